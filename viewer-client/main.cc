@@ -1,2 +1,147 @@
+// reenact-viewer: find clips nearby and watch them reenacted.
 #include <cstdio>
-int main() { std::puts("not built yet"); return 1; }
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "common/cli/command_line.h"
+#include "proto/api/api_client.h"
+#include "viewer-client/fetch/clip_fetcher.h"
+#include "viewer-client/play/headless_player.h"
+#include "viewer-client/play/window_player.h"
+
+namespace {
+
+using namespace reenact;
+
+constexpr const char* kUsage =
+    "usage:\n"
+    "  reenact-viewer browse --server URL --near LAT,LON [--radius-m M] [--limit N] [--json]\n"
+    "  reenact-viewer play CLIP_ID --server URL [--camera orbit] [--orbit-deg D]\n"
+    "                      [--headless --out DIR] [--frames N] [--width W --height H]\n"
+    "                      [--cache DIR] [--bare] [--skeleton] [--no-mp4]\n";
+
+int Fail(const Error& e) {
+  std::cerr << "reenact-viewer: " << e.message << "\n";
+  return e.code == "usage" ? 2 : 1;
+}
+
+int Browse(const CommandLine& cl) {
+  const auto server = cl.Require("server");
+  if (!server.ok()) return Fail(server.error());
+  const auto near = cl.Require("near");
+  if (!near.ok()) return Fail(near.error());
+  const auto latlon = ParseLatLon(*near);
+  if (!latlon.ok()) return Fail(latlon.error());
+  const auto radius = cl.GetDouble("radius-m", 1000);
+  if (!radius.ok()) return Fail(radius.error());
+  const auto limit = cl.GetInt("limit", 20);
+  if (!limit.ok()) return Fail(limit.error());
+  const proto::ApiClient api(*server, "");
+  const auto clips = api.Nearby(latlon->first, latlon->second, *radius, static_cast<int>(*limit));
+  if (!clips.ok()) return Fail(clips.error());
+  if (cl.Has("json")) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& c : *clips) out.push_back(proto::ClipSummaryToJson(c));
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  std::printf("%-24s %-28s %-12s %10s %9s %7s\n", "ID", "TITLE", "AUTHOR", "DISTANCE", "DURATION",
+              "FRAMES");
+  for (const auto& c : *clips)
+    std::printf("%-24s %-28.28s %-12.12s %8.1f m %7.1f s %7lld\n", c.id.c_str(), c.title.c_str(),
+                c.author.c_str(), c.distance_m, c.duration_s, static_cast<long long>(c.frame_count));
+  std::printf("%zu clip(s) within %.0f m of %.6f,%.6f\n", clips->size(), *radius, latlon->first,
+              latlon->second);
+  return 0;
+}
+
+int Play(const CommandLine& cl) {
+  if (cl.positionals().size() != 2) return Fail(MakeError("usage", "play needs a CLIP_ID"));
+  const std::string clip_id = cl.positionals()[1];
+  const auto server = cl.Require("server");
+  if (!server.ok()) return Fail(server.error());
+  const std::string camera = cl.GetOr("camera", "orbit");
+  if (camera != "orbit")
+    return Fail(MakeError("unsupported", "--camera " + camera +
+                                             ": this build has only the orbit camera "
+                                             "(relocalised cameras arrive with the viewer work)"));
+  viewer::HeadlessPlayOptions options;
+  const auto frames = cl.GetInt("frames", -1);
+  if (!frames.ok()) return Fail(frames.error());
+  if (*frames == 0 || *frames < -1) return Fail(MakeError("usage", "--frames must be >= 1"));
+  options.max_frames = static_cast<int>(*frames);
+  const auto angle = cl.GetDouble("orbit-deg", 60);
+  if (!angle.ok()) return Fail(angle.error());
+  options.orbit.angle_deg = *angle;
+  const auto width = cl.GetInt("width", 640);
+  const auto height = cl.GetInt("height", 480);
+  if (!width.ok()) return Fail(width.error());
+  if (!height.ok()) return Fail(height.error());
+  if (*width < 16 || *height < 16 || *width > 8192 || *height > 8192)
+    return Fail(MakeError("usage", "--width and --height must lie in [16, 8192]"));
+  options.width = static_cast<int>(*width);
+  options.height = static_cast<int>(*height);
+  options.textured = !cl.Has("bare");
+  options.draw_skeleton = cl.Has("skeleton");
+  options.write_mp4 = !cl.Has("no-mp4");
+  options.write_masks = cl.Has("masks");
+  if (cl.Has("headless")) {
+    const auto out = cl.Require("out");
+    if (!out.ok()) return Fail(MakeError("usage", "--headless needs --out DIR"));
+    options.out_dir = *out;
+  }
+
+  const proto::ApiClient api(*server, "");
+  const std::string cache = cl.GetOr("cache", ".cache/reenact-viewer");
+  auto clip = viewer::FetchClip(api, clip_id, cache);
+  if (!clip.ok()) return Fail(clip.error());
+  std::printf("fetched clip %s: %lld frames, %.1f KB (%.1f KB downloaded)\n", clip_id.c_str(),
+              static_cast<long long>(clip->manifest.frame_count), clip->bytes_total / 1024.0,
+              clip->bytes_downloaded / 1024.0);
+  const viewer::Reenactment reenactment(clip->manifest, std::move(clip->frames));
+
+  if (!cl.Has("headless")) {
+    const Status played = viewer::PlayInWindow(reenactment, options);
+    return played.ok() ? 0 : Fail(played.error());
+  }
+  const auto summary = viewer::PlayHeadless(reenactment, clip_id, options);
+  if (!summary.ok()) return Fail(summary.error());
+  std::printf("rendered %d frames from %.0f degrees around the subject in %.1f s "
+              "(render %.1f fps)\n",
+              summary->frames, options.orbit.angle_deg, summary->seconds, summary->render_fps);
+  std::printf("wrote %s/frames/, %s/contact_sheet.png%s, %s/render.json\n",
+              options.out_dir.c_str(), options.out_dir.c_str(),
+              summary->mp4_path.empty() ? "" : (", " + summary->mp4_path).c_str(),
+              options.out_dir.c_str());
+  if (!summary->mp4_warning.empty())
+    std::cerr << "reenact-viewer: warning: no MP4 written: " << summary->mp4_warning << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const CommandLineSpec spec{{"server", "near", "radius-m", "limit", "camera", "orbit-deg", "out",
+                              "frames", "width", "height", "cache"},
+                             {"json", "headless", "bare", "skeleton", "no-mp4", "masks", "help"}};
+  const auto cl = CommandLine::Parse(argc, argv, 1, spec);
+  if (!cl.ok()) {
+    std::cerr << "reenact-viewer: " << cl.error().message << "\n" << kUsage;
+    return 2;
+  }
+  const std::string command = cl->positionals().empty() ? "" : cl->positionals()[0];
+  if (cl->Has("help") || command == "help") {
+    std::cout << kUsage;
+    return 0;
+  }
+  try {
+    if (command == "browse") return Browse(*cl);
+    if (command == "play") return Play(*cl);
+  } catch (const std::exception& e) {
+    std::cerr << "reenact-viewer: internal error: " << e.what() << "\n";
+    return 3;
+  }
+  std::cerr << "reenact-viewer: unknown command '" << command << "'\n" << kUsage;
+  return 2;
+}

@@ -1,0 +1,48 @@
+#pragma once
+// Builds the clip's relocalisation map from keyframes: ORB features on the static background
+// only (the person mask, dilated, is excluded so the moving subject never enters the map),
+// lifted to 3D with the registered depth and moved into the world frame with the keyframe's
+// pose. A feature that lands within merge_radius_m of an existing map point with a similar
+// descriptor (Hamming distance <= merge_max_hamming) counts as another observation of it.
+
+#include <unordered_map>
+
+#include <Eigen/Geometry>
+
+#include "common/geometry/pinhole_camera.h"
+#include "common/image/image.h"
+#include "proto/clip/map_codec.h"
+
+namespace reenact::capture {
+
+struct BackgroundMapOptions {
+  int features_per_keyframe = 1000;  // ORB features detected per keyframe, >= 1
+  int mask_dilation_px = 15;         // person mask grown by this many pixels, >= 0
+  double min_depth_m = 0.3;          // depth range accepted for map points, metres
+  double max_depth_m = 8.0;
+  double merge_radius_m = 0.02;      // > 0
+  int merge_max_hamming = 64;        // [0, 256]
+  size_t max_points = 50000;         // the map keeps at most this many points
+
+  void Check() const;
+};
+
+class BackgroundMapBuilder {
+ public:
+  explicit BackgroundMapBuilder(BackgroundMapOptions options = {});
+
+  // Adds one keyframe; mask may be empty (no person known).
+  void AddKeyframe(const ImageRgb8& color, const ImageDepthMm& depth, double depth_scale_m,
+                   const ImageGray8& person_mask, const PinholeCamera& camera,
+                   const Eigen::Isometry3d& world_from_sensor);
+
+  size_t point_count() const { return map_.points.size(); }
+  proto::ClipMap Finish() &&;
+
+ private:
+  BackgroundMapOptions options_;
+  proto::ClipMap map_;
+  std::unordered_multimap<int64_t, size_t> grid_;  // voxel key -> point index
+};
+
+}  // namespace reenact::capture

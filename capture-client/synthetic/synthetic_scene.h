@@ -1,0 +1,86 @@
+#pragma once
+// A deterministic synthetic RGB-D capture: a procedural, textured, articulated person
+// (body_model.h, body_mesh.h, body_texture.h) performing a scripted motion (scenario.h) in
+// a textured room (room.h), seen by a static Kinect-like sensor
+// (PinholeCamera::KinectLike(), 640x480) about 3 m in front of the subject at 1.3 m height.
+// Ground truth for tests and evaluation: the skeleton, the sensor pose, per-pixel depth,
+// the subject mask and body-part labels.
+//
+// World frame: z up, floor at z = 0, metres; the subject stands near the origin and at
+// frame 0 faces the sensor (world -y). Rendering uses common/render/rasterizer.h.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "common/error/expected.h"
+#include "common/geometry/pinhole_camera.h"
+#include "common/image/image.h"
+#include "common/skeleton/skeleton.h"
+
+namespace reenact::capture {
+
+struct SyntheticView {
+  ImageRgb8 color;          // sRGB, 3 channels
+  ImageDepthMm depth;       // camera z in millimetres; 0 where nothing is hit or out of range
+  ImageGray8 mask;          // 255 where the subject is visible, else 0
+  ImageLabel8 part_labels;  // PartLabel(part) of the visible subject pixel, else 0
+};
+
+struct SyntheticRenderOptions {
+  // Draw the room (walls, floor, ceiling, furniture). Off: background colour 0, depth 0.
+  bool draw_room = true;
+  // Kinect-like depth noise and disparity quantisation (depth_noise.h), seeded by the
+  // scene's seed and the frame index. Mask and labels stay exact.
+  bool depth_noise = false;
+  // Depth readings outside [min_depth_m, max_depth_m] become 0 (no reading), as on a
+  // Kinect. Defaults 0.4 m and 8 m; 0 <= min < max <= 65.5.
+  double min_depth_m = 0.4;
+  double max_depth_m = 8.0;
+
+  // Throws CheckError when a field is out of range.
+  void Check() const;
+};
+
+class SyntheticScene {
+ public:
+  // A scene playing the named scenario (see ScenarioNames()); seed drives the depth noise.
+  // Error "not_found" listing the known scenarios for an unknown name.
+  static Expected<SyntheticScene> Create(std::string_view scenario, uint64_t seed = 1);
+  static std::vector<std::string> ScenarioNames();
+
+  const std::string& scenario() const;
+  uint64_t seed() const;
+  int frame_count() const;
+  double frame_rate_hz() const;
+  const PinholeCamera& sensor_camera() const;
+  // The sensor's pose (static over the clip). Precondition: 0 <= frame < frame_count().
+  Eigen::Isometry3d world_from_sensor(int frame) const;
+  // Ground truth skeleton in the world frame, every joint confidence 1 (joint placement in
+  // body_model.h: head joint at the head's centre, neck at the base of the head, hands at
+  // the palm centre, feet at the ankle). Precondition: 0 <= frame < frame_count().
+  Skeleton skeleton_in_world(int frame) const;
+  Eigen::Vector3d world_up() const { return Eigen::Vector3d::UnitZ(); }
+
+  // Renders frame `frame` from any undistorted camera. Throws CheckError on a frame out of
+  // range, a camera with distortion, or options that fail Check().
+  SyntheticView Render(int frame, const PinholeCamera& camera,
+                       const Eigen::Isometry3d& world_from_camera,
+                       const SyntheticRenderOptions& options = {}) const;
+  // Render() from the sensor.
+  SyntheticView RenderSensor(int frame, const SyntheticRenderOptions& options = {}) const;
+
+  struct Data;
+
+ private:
+  explicit SyntheticScene(std::shared_ptr<const Data> data) : data_(std::move(data)) {}
+  void CheckFrame(int frame) const;
+
+  std::shared_ptr<const Data> data_;  // immutable, shared between copies
+};
+
+}  // namespace reenact::capture

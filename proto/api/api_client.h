@@ -1,0 +1,55 @@
+#pragma once
+// ApiClient: the reenact HTTP API (proto/API.md) as blocking calls, for the capture client
+// (upload) and the viewer client (browse, download). A failed request becomes the server's
+// own Error{code, message} (from its JSON error body); transport failures keep the codes of
+// HttpClient::Send ("unreachable", "timeout", ...).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/error/expected.h"
+#include "proto/api/api_types.h"
+#include "proto/api/http_client.h"
+
+namespace reenact::proto {
+
+class ApiClient {
+ public:
+  // base_url "http://HOST:PORT"; token may be empty for read-only use.
+  ApiClient(std::string base_url, std::string token, HttpClientOptions options = {});
+
+  // POST /v1/clips: creates a draft from the manifest JSON; returns the clip id.
+  Expected<std::string> CreateClip(const std::string& manifest_json) const;
+  // PUT /v1/clips/{id}/frames/{n}: uploads frame n's bytes (idempotent).
+  Status PutFrame(const std::string& id, int64_t n, const std::string& bytes) const;
+  // PUT /v1/clips/{id}/map (idempotent).
+  Status PutMap(const std::string& id, const std::string& bytes) const;
+  // POST /v1/clips/{id}/publish; code "incomplete" naming missing parts.
+  Status Publish(const std::string& id) const;
+  // GET /v1/clips?near=...: the first page of published clips within radius_m, nearest first.
+  Expected<std::vector<ClipSummary>> Nearby(double lat_deg, double lon_deg, double radius_m,
+                                            int limit = 20) const;
+  // The same with a cursor from a previous page (empty for the first page).
+  Expected<NearbyPage> NearbyPageAt(double lat_deg, double lon_deg, double radius_m, int limit,
+                                    const std::string& cursor) const;
+  // GET /v1/clips/{id}: the manifest JSON exactly as uploaded.
+  Expected<std::string> GetManifest(const std::string& id) const;
+  Expected<std::string> GetFrame(const std::string& id, int64_t n) const;
+  Expected<std::string> GetMap(const std::string& id) const;
+  // DELETE /v1/clips/{id} (owner only).
+  Status DeleteClip(const std::string& id) const;
+  // GET /v1/me/clips: the caller's clips, drafts included (distance_m is 0).
+  Expected<std::vector<ClipSummary>> MyClips() const;
+
+  const std::string& base_url() const { return http_.base_url(); }
+
+ private:
+  // Sends with the bearer token; a status outside 2xx becomes an Error.
+  Expected<HttpResponse> Call(HttpRequest request, int expected_status) const;
+
+  HttpClient http_;
+  std::string token_;
+};
+
+}  // namespace reenact::proto

@@ -1,0 +1,47 @@
+#pragma once
+// Internal to server/http: one function per route (dispatched by routes.cc) and the checks
+// they share. A handler's precondition is that the route and method matched.
+
+#include <optional>
+#include <string>
+#include <variant>
+
+#include "common/error/expected.h"
+#include "server/http/message.h"
+#include "server/http/route_match.h"
+#include "server/http/service_context.h"
+
+namespace reenact::server::handlers {
+
+// The caller's user, or the 401/500 response to send instead.
+std::variant<UserRecord, Response> RequireUser(const Request& request, ServiceContext& context);
+// Like RequireUser, but a request without Authorization is anonymous (nullopt) rather than 401.
+std::variant<std::optional<UserRecord>, Response> OptionalUser(const Request& request,
+                                                               ServiceContext& context);
+// The clip if the viewer may read it (published, or a draft of theirs), else 404.
+std::variant<ClipRecord, Response> LoadVisibleClip(ServiceContext& context, const std::string& id,
+                                                   const std::optional<UserRecord>& viewer);
+// The clip if the user owns it: 404 if absent or another's draft, 403 if another's published.
+std::variant<ClipRecord, Response> LoadOwnedClip(ServiceContext& context, const std::string& id,
+                                                 const UserRecord& user);
+// 500 "internal" for a failure of the store; the details go to stderr only.
+Response StorageFailure(const Error& error);
+// The part index of a route: frame n (>= 0) or kMapPart; 400 for a malformed n.
+std::variant<int, Response> PartIndex(const RouteMatch& match);
+
+// Opaque keyset cursor of nearby pagination.
+std::string EncodeCursor(const NearbyQuery::Key& key);
+std::optional<NearbyQuery::Key> DecodeCursor(std::string_view cursor);
+
+Response CreateClip(const Request& request, ServiceContext& context);
+Response PutPart(const Request& request, ServiceContext& context, const RouteMatch& match);
+Response Publish(const Request& request, ServiceContext& context, const RouteMatch& match);
+Response DeleteClip(const Request& request, ServiceContext& context, const RouteMatch& match);
+Response ListNearby(const Request& request, ServiceContext& context, const RouteMatch& match);
+Response GetManifest(const Request& request, ServiceContext& context, const RouteMatch& match);
+Response GetPart(const Request& request, ServiceContext& context, const RouteMatch& match);
+Response MyClips(const Request& request, ServiceContext& context);
+Response Health(ServiceContext& context);
+Response MetricsText(ServiceContext& context);
+
+}  // namespace reenact::server::handlers

@@ -1,0 +1,64 @@
+#pragma once
+// The asynchronous HTTP/1.1 server (Boost.Beast, after its async server example): a listener
+// and one session per connection, each on its own strand, running Handle() (routes.h) for
+// every request. Bodies are limited per route (BodyLimit) before they are read; every read
+// and write has a deadline. Stop() is graceful: no new connections, idle connections close,
+// requests in flight finish and are answered, then Run() returns.
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "common/error/expected.h"
+#include "server/http/service_context.h"
+
+namespace reenact::server {
+
+struct ServerOptions {
+  // Address to bind: an IPv4/IPv6 literal or a host name. Default 127.0.0.1.
+  std::string host = "127.0.0.1";
+  // TCP port; 0 = let the system pick a free one (Listen() returns it). Default 8080.
+  uint16_t port = 8080;
+  // Threads running the I/O loop; >= 1. Default 2.
+  int threads = 2;
+  // How long a connection may sit without a complete request header; > 0. Default 30 s.
+  std::chrono::milliseconds idle_timeout{30'000};
+  // Deadline to receive a request's body and to send its response; > 0. Default 120 s.
+  std::chrono::milliseconds transfer_timeout{120'000};
+  // After Stop(), how long in-flight requests may take before connections are cut; > 0.
+  // Default 30 s.
+  std::chrono::milliseconds drain_timeout{30'000};
+
+  void Check() const;
+};
+
+// "HOST:PORT" or "[V6]:PORT" into host and port; code "invalid_argument" otherwise.
+Expected<std::pair<std::string, uint16_t>> ParseListenAddress(const std::string& text);
+
+class HttpServer {
+ public:
+  // context must outlive the server.
+  HttpServer(ServiceContext& context, ServerOptions options);
+  ~HttpServer();
+  HttpServer(const HttpServer&) = delete;
+  HttpServer& operator=(const HttpServer&) = delete;
+
+  // Binds and listens; returns the bound port. code "address_in_use" when the port is
+  // taken, "invalid_argument" for a host that does not resolve, "io" otherwise.
+  Expected<uint16_t> Listen();
+
+  // Serves until Stop() (or, with stop_on_signals, SIGINT/SIGTERM), then drains and returns.
+  // Precondition: Listen() succeeded.
+  void Run(bool stop_on_signals);
+
+  // Begins a graceful stop; safe from any thread, idempotent.
+  void Stop();
+
+  class Impl;  // defined in http_server.cc
+
+ private:
+  std::shared_ptr<Impl> impl_;
+};
+
+}  // namespace reenact::server

@@ -1,0 +1,41 @@
+#include "server/http/message.h"
+
+#include <cctype>
+
+#include "proto/api/api_types.h"
+
+namespace reenact::server {
+
+bool EqualsIgnoreCase(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (std::tolower(static_cast<unsigned char>(a[i])) !=
+        std::tolower(static_cast<unsigned char>(b[i]))) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::optional<std::string> Request::Header(std::string_view name) const {
+  for (const auto& [key, value] : headers) {
+    if (EqualsIgnoreCase(key, name)) return value;
+  }
+  return std::nullopt;
+}
+
+Response ErrorResponse(int status, std::string_view code, std::string_view message) {
+  Response response;
+  response.status = status;
+  response.body = proto::ErrorBodyJson(code, message);
+  return response;
+}
+
+Response JsonResponse(int status, const nlohmann::json& body) {
+  Response response;
+  response.status = status;
+  response.body = body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  return response;
+}
+
+}  // namespace reenact::server

@@ -1,0 +1,223 @@
+#include <cmath>
+#include <functional>
+#include <map>
+
+#include "proto/api/api_types.h"
+#include "server/http/handlers.h"
+
+namespace reenact::server::handlers {
+
+namespace {
+
+Response BadRequest(std::string message) {
+  return ErrorResponse(400, "bad_request", message);
+}
+
+std::optional<double> ParseNumber(const std::string& text) {
+  if (text.empty() || text.size() > 64) return std::nullopt;
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+std::optional<std::map<std::string, std::string>> ParseQuery(const std::string& query) {
+  std::map<std::string, std::string> params;
+  size_t start = 0;
+  while (start < query.size()) {
+    size_t end = query.find('&', start);
+    if (end == std::string::npos) end = query.size();
+    const std::string pair = query.substr(start, end - start);
+    start = end + 1;
+    if (pair.empty()) continue;
+    const size_t eq = pair.find('=');
+    auto key = PercentDecode(pair.substr(0, eq));
+    auto value = PercentDecode(eq == std::string::npos ? "" : pair.substr(eq + 1));
+    if (!key || !value) return std::nullopt;
+    params.emplace(*key, *value);
+  }
+  return params;
+}
+
+// True if an If-None-Match header names this entity tag (or "*").
+bool MatchesEtag(const Request& request, const std::string& etag) {
+  const auto header = request.Header("If-None-Match");
+  if (!header) return false;
+  std::string_view rest = *header;
+  while (!rest.empty()) {
+    const size_t comma = rest.find(',');
+    std::string_view item = rest.substr(0, comma);
+    while (!item.empty() && item.front() == ' ') item.remove_prefix(1);
+    while (!item.empty() && item.back() == ' ') item.remove_suffix(1);
+    if (item.starts_with("W/")) item.remove_prefix(2);
+    if (item == "*" || item == etag) return true;
+    if (comma == std::string_view::npos) break;
+    rest.remove_prefix(comma + 1);
+  }
+  return false;
+}
+
+// 304 or the entity with its ETag.
+Response Entity(const Request& request, const std::string& sha256, std::string content_type,
+                const std::function<Expected<std::string>()>& load) {
+  const std::string etag = "\"" + sha256 + "\"";
+  Response response;
+  response.headers.emplace_back("ETag", etag);
+  response.headers.emplace_back("Cache-Control", "no-cache");
+  if (MatchesEtag(request, etag)) {
+    response.status = 304;
+    response.content_type.clear();
+    return response;
+  }
+  auto body = load();
+  if (!body) return StorageFailure(body.error());
+  response.content_type = std::move(content_type);
+  response.body = std::move(*body);
+  return response;
+}
+
+proto::ClipSummary Summary(const ClipRecord& clip, double distance_m) {
+  proto::ClipSummary summary;
+  summary.id = clip.id;
+  summary.title = clip.title;
+  summary.author = clip.author;
+  summary.lat_deg = clip.lat_deg;
+  summary.lon_deg = clip.lon_deg;
+  summary.alt_m = clip.alt_m;
+  summary.distance_m = distance_m;
+  summary.duration_s = clip.duration_s;
+  summary.frame_count = clip.frame_count;
+  return summary;
+}
+
+}  // namespace
+
+Response ListNearby(const Request& /*request*/, ServiceContext& context, const RouteMatch& match) {
+  const ServiceLimits& limits = context.limits;
+  auto params = ParseQuery(match.query);
+  if (!params) return BadRequest("malformed percent-escape in the query string");
+  auto near = params->find("near");
+  if (near == params->end()) return BadRequest("query parameter near=LAT,LON is required");
+  const size_t comma = near->second.find(',');
+  const auto lat = ParseNumber(near->second.substr(0, comma));
+  const auto lon = comma == std::string::npos ? std::nullopt
+                                              : ParseNumber(near->second.substr(comma + 1));
+  if (!lat || !lon || *lat < -90 || *lat > 90 || *lon < -180 || *lon > 180) {
+    return BadRequest("near must be LAT,LON in degrees with LAT in [-90, 90] and LON in "
+                      "[-180, 180]");
+  }
+  NearbyQuery query;
+  query.lat_deg = *lat;
+  query.lon_deg = *lon;
+  query.radius_m = limits.default_radius_m;
+  if (auto it = params->find("radius_m"); it != params->end()) {
+    const auto radius = ParseNumber(it->second);
+    if (!radius || *radius < 0 || *radius > kMaxNearbyRadiusM) {
+      return BadRequest("radius_m must be a number of metres in [0, " +
+                        std::to_string(static_cast<int64_t>(kMaxNearbyRadiusM)) + "]");
+    }
+    query.radius_m = *radius;
+  }
+  int limit = limits.default_page_size;
+  if (auto it = params->find("limit"); it != params->end()) {
+    const auto value = ParseNumber(it->second);
+    if (!value || *value != std::floor(*value) || *value < 1 || *value > limits.max_page_size) {
+      return BadRequest("limit must be an integer in [1, " +
+                        std::to_string(limits.max_page_size) + "]");
+    }
+    limit = static_cast<int>(*value);
+  }
+  if (auto it = params->find("cursor"); it != params->end() && !it->second.empty()) {
+    query.after = DecodeCursor(it->second);
+    if (!query.after) return BadRequest("invalid cursor; pass next_cursor of a previous page");
+  }
+  query.limit = limit + 1;
+  auto hits = context.metadata.Nearby(query);
+  if (!hits) return StorageFailure(hits.error());
+  const bool more = hits->size() > static_cast<size_t>(limit);
+  if (more) hits->resize(limit);
+  nlohmann::json clips = nlohmann::json::array();
+  for (const NearbyHit& hit : *hits) {
+    clips.push_back(proto::ClipSummaryToJson(Summary(hit.clip, hit.distance_m)));
+  }
+  nlohmann::json body = {{"clips", clips}, {"next_cursor", nullptr}};
+  if (more) {
+    body["next_cursor"] = EncodeCursor({hits->back().distance_m, hits->back().clip.id});
+  }
+  return JsonResponse(200, body);
+}
+
+Response GetManifest(const Request& request, ServiceContext& context, const RouteMatch& match) {
+  auto viewer = OptionalUser(request, context);
+  if (auto* response = std::get_if<Response>(&viewer)) return std::move(*response);
+  auto clip = LoadVisibleClip(context, match.clip_id,
+                              std::get<std::optional<UserRecord>>(viewer));
+  if (auto* response = std::get_if<Response>(&clip)) return std::move(*response);
+  return Entity(request, std::get<ClipRecord>(clip).manifest_sha256, "application/json",
+                [&] { return context.metadata.GetManifest(match.clip_id); });
+}
+
+Response GetPart(const Request& request, ServiceContext& context, const RouteMatch& match) {
+  auto viewer = OptionalUser(request, context);
+  if (auto* response = std::get_if<Response>(&viewer)) return std::move(*response);
+  auto clip = LoadVisibleClip(context, match.clip_id,
+                              std::get<std::optional<UserRecord>>(viewer));
+  if (auto* response = std::get_if<Response>(&clip)) return std::move(*response);
+  auto index_or = PartIndex(match);
+  if (auto* response = std::get_if<Response>(&index_or)) return std::move(*response);
+  const int index = std::get<int>(index_or);
+  const std::string name = index == kMapPart ? "the map" : "frame " + std::to_string(index);
+  auto part = context.metadata.GetPart(match.clip_id, index);
+  if (!part) return StorageFailure(part.error());
+  if (!*part) {
+    return ErrorResponse(404, "not_found", "clip '" + match.clip_id + "' has no " + name);
+  }
+  if (!(*part)->present) {
+    return ErrorResponse(404, "not_found",
+                         name + " of clip '" + match.clip_id + "' has not been uploaded yet");
+  }
+  const std::string key = BlobKey(match.clip_id, index);
+  return Entity(request, (*part)->spec.sha256, "application/octet-stream",
+                [&]() -> Expected<std::string> {
+                  auto blob = context.blobs.Get(key);
+                  if (!blob) return blob.error();
+                  if (!*blob) return MakeError("storage", "blob " + key + " is missing");
+                  return std::move(**blob);
+                });
+}
+
+Response MyClips(const Request& request, ServiceContext& context) {
+  auto user = RequireUser(request, context);
+  if (auto* response = std::get_if<Response>(&user)) return std::move(*response);
+  auto clips = context.metadata.ClipsOfOwner(std::get<UserRecord>(user).id);
+  if (!clips) return StorageFailure(clips.error());
+  nlohmann::json list = nlohmann::json::array();
+  for (const ClipRecord& clip : *clips) {
+    nlohmann::json item = proto::ClipSummaryToJson(Summary(clip, 0.0));
+    item["state"] = clip.state == ClipState::kPublished ? "published" : "draft";
+    list.push_back(std::move(item));
+  }
+  return JsonResponse(200, {{"clips", list}, {"next_cursor", nullptr}});
+}
+
+Response Health(ServiceContext& context) {
+  auto count = context.metadata.CountClips(ClipState::kPublished);
+  if (!count) {
+    StorageFailure(count.error());
+    return ErrorResponse(503, "unavailable", "the database is not answering");
+  }
+  return JsonResponse(200, {{"status", "ok"}});
+}
+
+Response MetricsText(ServiceContext& context) {
+  auto drafts = context.metadata.CountClips(ClipState::kDraft);
+  auto published = context.metadata.CountClips(ClipState::kPublished);
+  if (!drafts) return StorageFailure(drafts.error());
+  if (!published) return StorageFailure(published.error());
+  Response response;
+  response.content_type = "text/plain; version=0.0.4; charset=utf-8";
+  response.body = context.metrics.Render(*drafts, *published);
+  return response;
+}
+
+}  // namespace reenact::server::handlers

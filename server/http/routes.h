@@ -1,0 +1,29 @@
+#pragma once
+// The HTTP API (proto/API.md) as a pure function of the request and the service's stores:
+// no sockets, so every route is testable directly. Errors are {"error":{"code","message"}}
+// with the fitting status (400 bad_request, 401 unauthorized, 403 forbidden, 404 not_found,
+// 405 method_not_allowed, 409 incomplete, 413 too_large, 415 unsupported_media_type,
+// 422 invalid_manifest / size_mismatch / hash_mismatch, 500 internal, 503 unavailable).
+// Storage failures are logged to stderr; the response says only "internal".
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+#include "server/http/message.h"
+#include "server/http/service_context.h"
+
+namespace reenact::server {
+
+// Handles one request. Never throws for any request content.
+Response Handle(const Request& request, ServiceContext& context);
+
+// The route pattern a request falls under, e.g. "PUT /v1/clips/{id}/frames/{n}", or
+// "unmatched": the label of metrics, never the raw path.
+std::string RouteLabel(std::string_view method, std::string_view target);
+
+// Largest request body a route accepts, bytes (0 for routes that take no body). The server
+// refuses larger bodies with 413 before reading them.
+size_t BodyLimit(std::string_view method, std::string_view target, const ServiceLimits& limits);
+
+}  // namespace reenact::server

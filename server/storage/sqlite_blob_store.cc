@@ -1,0 +1,44 @@
+#include "server/storage/sqlite_blob_store.h"
+
+namespace reenact::server {
+
+Expected<std::unique_ptr<SqliteBlobStore>> SqliteBlobStore::Open(const std::string& path) {
+  auto db = sqlite::Database::Open(path);
+  if (!db) return db.error();
+  auto probe = db->Prepare("SELECT 1 FROM blobs LIMIT 0");
+  if (!probe) {
+    return MakeError("storage", "database " + path + " has no blobs table; apply migrations first");
+  }
+  return std::unique_ptr<SqliteBlobStore>(new SqliteBlobStore(std::move(*db)));
+}
+
+Status SqliteBlobStore::Put(const std::string& key, std::string_view bytes) {
+  std::lock_guard lock(mutex_);
+  auto stmt = db_.Prepare("INSERT INTO blobs(key, data) VALUES (?1, ?2) "
+                          "ON CONFLICT(key) DO UPDATE SET data = excluded.data");
+  if (!stmt) return stmt.error();
+  stmt->BindText(1, key).BindBlob(2, bytes);
+  return stmt->Run();
+}
+
+Expected<std::optional<std::string>> SqliteBlobStore::Get(const std::string& key) {
+  std::lock_guard lock(mutex_);
+  auto stmt = db_.Prepare("SELECT data FROM blobs WHERE key = ?1");
+  if (!stmt) return stmt.error();
+  stmt->BindText(1, key);
+  auto row = stmt->Step();
+  if (!row) return row.error();
+  if (!*row) return std::optional<std::string>();
+  return std::optional<std::string>(stmt->ColumnBlob(0));
+}
+
+Status SqliteBlobStore::DeletePrefix(const std::string& prefix) {
+  std::lock_guard lock(mutex_);
+  // Range scan on the primary key: prefix <= key < prefix + U+10FFFF-ish sentinel.
+  auto stmt = db_.Prepare("DELETE FROM blobs WHERE key >= ?1 AND key < ?2");
+  if (!stmt) return stmt.error();
+  stmt->BindText(1, prefix).BindText(2, prefix + "\xff");
+  return stmt->Run();
+}
+
+}  // namespace reenact::server

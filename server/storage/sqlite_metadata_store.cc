@@ -1,0 +1,298 @@
+#include "server/storage/sqlite_metadata_store.h"
+
+#include <algorithm>
+#include <ctime>
+#include <set>
+#include <tuple>
+
+#include "server/geo/geodesic.h"
+#include "server/storage/migrations.h"
+
+namespace reenact::server {
+
+namespace {
+
+constexpr const char* kClipColumns =
+    "c.public_id, c.owner_id, c.state, c.title, c.author, c.lat_deg, c.lon_deg, c.alt_m, "
+    "c.duration_s, c.frame_count, c.manifest_sha256";
+
+ClipRecord ReadClip(const sqlite::Statement& stmt) {
+  ClipRecord clip;
+  clip.id = stmt.ColumnText(0);
+  clip.owner_id = stmt.ColumnInt(1);
+  clip.state = stmt.ColumnText(2) == "published" ? ClipState::kPublished : ClipState::kDraft;
+  clip.title = stmt.ColumnText(3);
+  clip.author = stmt.ColumnText(4);
+  clip.lat_deg = stmt.ColumnDouble(5);
+  clip.lon_deg = stmt.ColumnDouble(6);
+  clip.alt_m = stmt.ColumnDouble(7);
+  clip.duration_s = stmt.ColumnDouble(8);
+  clip.frame_count = static_cast<int>(stmt.ColumnInt(9));
+  clip.manifest_sha256 = stmt.ColumnText(10);
+  return clip;
+}
+
+int64_t NowUnix() { return static_cast<int64_t>(std::time(nullptr)); }
+
+// The internal key of a clip, or nullopt.
+Expected<std::optional<int64_t>> ClipKey(sqlite::Database& db, const std::string& id) {
+  auto stmt = db.Prepare("SELECT rowid_key FROM clips WHERE public_id = ?1");
+  if (!stmt) return stmt.error();
+  stmt->BindText(1, id);
+  auto row = stmt->Step();
+  if (!row) return row.error();
+  if (!*row) return std::optional<int64_t>();
+  return std::optional<int64_t>(stmt->ColumnInt(0));
+}
+
+bool IsConstraintError(const Error& error) {
+  return error.message.find("UNIQUE constraint failed") != std::string::npos;
+}
+
+}  // namespace
+
+Expected<std::unique_ptr<SqliteMetadataStore>> SqliteMetadataStore::Open(const std::string& path) {
+  auto db = sqlite::Database::Open(path);
+  if (!db) return db.error();
+  if (Status s = ApplyMigrations(*db, EmbeddedMigrations()); !s) return s.error();
+  return std::unique_ptr<SqliteMetadataStore>(new SqliteMetadataStore(std::move(*db)));
+}
+
+Expected<UserRecord> SqliteMetadataStore::AddUser(const std::string& name,
+                                                  const std::string& token_sha256) {
+  std::lock_guard lock(mutex_);
+  auto tx = sqlite::Transaction::Begin(db_);
+  if (!tx) return tx.error();
+  auto insert_user = db_.Prepare("INSERT INTO users(name, created_at) VALUES (?1, ?2)");
+  if (!insert_user) return insert_user.error();
+  insert_user->BindText(1, name).Bind(2, NowUnix());
+  if (Status s = insert_user->Run(); !s) {
+    if (IsConstraintError(s.error())) {
+      return MakeError("conflict", "a user named '" + name + "' already exists");
+    }
+    return s.error();
+  }
+  UserRecord user{db_.LastInsertRowId(), name};
+  auto insert_token =
+      db_.Prepare("INSERT INTO tokens(user_id, token_sha256, created_at) VALUES (?1, ?2, ?3)");
+  if (!insert_token) return insert_token.error();
+  insert_token->Bind(1, user.id).BindText(2, token_sha256).Bind(3, NowUnix());
+  if (Status s = insert_token->Run(); !s) return s.error();
+  if (Status s = tx->Commit(); !s) return s.error();
+  return user;
+}
+
+Expected<std::optional<TokenOwner>> SqliteMetadataStore::FindUserByTokenHash(
+    const std::string& token_sha256) {
+  std::lock_guard lock(mutex_);
+  auto stmt = db_.Prepare(
+      "SELECT u.id, u.name, t.token_sha256 FROM tokens t JOIN users u ON u.id = t.user_id "
+      "WHERE t.token_sha256 = ?1");
+  if (!stmt) return stmt.error();
+  stmt->BindText(1, token_sha256);
+  auto row = stmt->Step();
+  if (!row) return row.error();
+  if (!*row) return std::optional<TokenOwner>();
+  return std::optional<TokenOwner>(
+      TokenOwner{UserRecord{stmt->ColumnInt(0), stmt->ColumnText(1)}, stmt->ColumnText(2)});
+}
+
+Status SqliteMetadataStore::CreateClip(const NewClip& clip) {
+  std::lock_guard lock(mutex_);
+  auto tx = sqlite::Transaction::Begin(db_);
+  if (!tx) return tx.error();
+  const ClipRecord& r = clip.record;
+  auto insert = db_.Prepare(
+      "INSERT INTO clips(public_id, owner_id, state, title, author, lat_deg, lon_deg, alt_m, "
+      "duration_s, frame_count, manifest, manifest_sha256, created_at) "
+      "VALUES (?1, ?2, 'draft', ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12)");
+  if (!insert) return insert.error();
+  insert->BindText(1, r.id)
+      .Bind(2, r.owner_id)
+      .BindText(3, r.title)
+      .BindText(4, r.author)
+      .Bind(5, r.lat_deg)
+      .Bind(6, r.lon_deg)
+      .Bind(7, r.alt_m)
+      .Bind(8, r.duration_s)
+      .Bind(9, r.frame_count)
+      .BindBlob(10, clip.manifest_json)
+      .BindText(11, r.manifest_sha256)
+      .Bind(12, NowUnix());
+  if (Status s = insert->Run(); !s) {
+    if (IsConstraintError(s.error())) return MakeError("conflict", "clip id already exists");
+    return s;
+  }
+  const int64_t key = db_.LastInsertRowId();
+  auto box = db_.Prepare(
+      "INSERT INTO clip_boxes(id, min_lat, max_lat, min_lon, max_lon) VALUES (?1, ?2, ?2, ?3, ?3)");
+  if (!box) return box.error();
+  box->Bind(1, key).Bind(2, r.lat_deg).Bind(3, r.lon_deg);
+  if (Status s = box->Run(); !s) return s;
+  auto part = db_.Prepare(
+      "INSERT INTO clip_parts(clip_key, part_index, bytes, sha256) VALUES (?1, ?2, ?3, ?4)");
+  if (!part) return part.error();
+  for (const PartSpec& spec : clip.parts) {
+    part->Reset();
+    part->Bind(1, key).Bind(2, spec.index).Bind(3, spec.bytes).BindText(4, spec.sha256);
+    if (Status s = part->Run(); !s) return s;
+  }
+  return tx->Commit();
+}
+
+Expected<std::optional<ClipRecord>> SqliteMetadataStore::GetClip(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  auto stmt = db_.Prepare(std::string("SELECT ") + kClipColumns +
+                          " FROM clips c WHERE c.public_id = ?1");
+  if (!stmt) return stmt.error();
+  stmt->BindText(1, id);
+  auto row = stmt->Step();
+  if (!row) return row.error();
+  if (!*row) return std::optional<ClipRecord>();
+  return std::optional<ClipRecord>(ReadClip(*stmt));
+}
+
+Expected<std::string> SqliteMetadataStore::GetManifest(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  auto stmt = db_.Prepare("SELECT manifest FROM clips WHERE public_id = ?1");
+  if (!stmt) return stmt.error();
+  stmt->BindText(1, id);
+  auto row = stmt->Step();
+  if (!row) return row.error();
+  if (!*row) return MakeError("not_found", "no clip " + id);
+  return stmt->ColumnBlob(0);
+}
+
+Expected<std::optional<PartRecord>> SqliteMetadataStore::GetPart(const std::string& id,
+                                                                 int index) {
+  std::lock_guard lock(mutex_);
+  auto stmt = db_.Prepare(
+      "SELECT p.bytes, p.sha256, p.present FROM clip_parts p JOIN clips c "
+      "ON c.rowid_key = p.clip_key WHERE c.public_id = ?1 AND p.part_index = ?2");
+  if (!stmt) return stmt.error();
+  stmt->BindText(1, id).Bind(2, index);
+  auto row = stmt->Step();
+  if (!row) return row.error();
+  if (!*row) return std::optional<PartRecord>();
+  PartRecord part;
+  part.spec = PartSpec{index, stmt->ColumnInt(0), stmt->ColumnText(1)};
+  part.present = stmt->ColumnInt(2) != 0;
+  return std::optional<PartRecord>(part);
+}
+
+Status SqliteMetadataStore::MarkPartPresent(const std::string& id, int index) {
+  std::lock_guard lock(mutex_);
+  auto stmt = db_.Prepare(
+      "UPDATE clip_parts SET present = 1 WHERE part_index = ?2 AND clip_key = "
+      "(SELECT rowid_key FROM clips WHERE public_id = ?1)");
+  if (!stmt) return stmt.error();
+  stmt->BindText(1, id).Bind(2, index);
+  if (Status s = stmt->Run(); !s) return s;
+  if (db_.Changes() == 0) return MakeError("not_found", "no such part of clip " + id);
+  return {};
+}
+
+Expected<PublishResult> SqliteMetadataStore::Publish(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  auto tx = sqlite::Transaction::Begin(db_);
+  if (!tx) return tx.error();
+  auto key = ClipKey(db_, id);
+  if (!key) return key.error();
+  if (!*key) return MakeError("not_found", "no clip " + id);
+  auto missing = db_.Prepare(
+      "SELECT part_index FROM clip_parts WHERE clip_key = ?1 AND present = 0 ORDER BY part_index");
+  if (!missing) return missing.error();
+  missing->Bind(1, **key);
+  PublishResult result;
+  for (;;) {
+    auto row = missing->Step();
+    if (!row) return row.error();
+    if (!*row) break;
+    result.missing_parts.push_back(static_cast<int>(missing->ColumnInt(0)));
+  }
+  if (!result.missing_parts.empty()) return result;
+  auto update = db_.Prepare(
+      "UPDATE clips SET state = 'published', published_at = COALESCE(published_at, ?2) "
+      "WHERE rowid_key = ?1");
+  if (!update) return update.error();
+  update->Bind(1, **key).Bind(2, NowUnix());
+  if (Status s = update->Run(); !s) return s.error();
+  if (Status s = tx->Commit(); !s) return s.error();
+  result.published = true;
+  return result;
+}
+
+Expected<bool> SqliteMetadataStore::DeleteClip(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  auto stmt = db_.Prepare("DELETE FROM clips WHERE public_id = ?1");
+  if (!stmt) return stmt.error();
+  stmt->BindText(1, id);
+  if (Status s = stmt->Run(); !s) return s.error();
+  return db_.Changes() > 0;
+}
+
+Expected<std::vector<ClipRecord>> SqliteMetadataStore::ClipsOfOwner(int64_t owner_id) {
+  std::lock_guard lock(mutex_);
+  auto stmt = db_.Prepare(std::string("SELECT ") + kClipColumns +
+                          " FROM clips c WHERE c.owner_id = ?1 ORDER BY c.created_at, c.public_id");
+  if (!stmt) return stmt.error();
+  stmt->Bind(1, owner_id);
+  std::vector<ClipRecord> clips;
+  for (;;) {
+    auto row = stmt->Step();
+    if (!row) return row.error();
+    if (!*row) break;
+    clips.push_back(ReadClip(*stmt));
+  }
+  return clips;
+}
+
+Expected<std::vector<NearbyHit>> SqliteMetadataStore::Nearby(const NearbyQuery& query) {
+  REENACT_CHECK(query.limit >= 1, "nearby limit must be >= 1");
+  REENACT_CHECK(query.radius_m >= 0.0 && query.radius_m <= kMaxNearbyRadiusM,
+                "nearby radius out of range");
+  std::lock_guard lock(mutex_);
+  auto stmt = db_.Prepare(std::string("SELECT ") + kClipColumns +
+                          " FROM clip_boxes b JOIN clips c ON c.rowid_key = b.id "
+                          "WHERE b.max_lat >= ?1 AND b.min_lat <= ?2 AND b.max_lon >= ?3 "
+                          "AND b.min_lon <= ?4 AND c.state = 'published'");
+  if (!stmt) return stmt.error();
+  std::vector<NearbyHit> hits;
+  std::set<std::string> seen;
+  for (const LatLonBox& box : BoundingBoxes(query.lat_deg, query.lon_deg, query.radius_m)) {
+    stmt->Reset();
+    stmt->Bind(1, box.min_lat_deg).Bind(2, box.max_lat_deg).Bind(3, box.min_lon_deg)
+        .Bind(4, box.max_lon_deg);
+    for (;;) {
+      auto row = stmt->Step();
+      if (!row) return row.error();
+      if (!*row) break;
+      ClipRecord clip = ReadClip(*stmt);
+      if (!seen.insert(clip.id).second) continue;
+      const double d = HaversineDistanceM(query.lat_deg, query.lon_deg, clip.lat_deg, clip.lon_deg);
+      if (d > query.radius_m) continue;
+      if (query.after && std::tie(d, clip.id) <=
+                             std::tie(query.after->distance_m, query.after->id)) {
+        continue;
+      }
+      hits.push_back(NearbyHit{std::move(clip), d});
+    }
+  }
+  std::sort(hits.begin(), hits.end(), [](const NearbyHit& a, const NearbyHit& b) {
+    return std::tie(a.distance_m, a.clip.id) < std::tie(b.distance_m, b.clip.id);
+  });
+  if (hits.size() > static_cast<size_t>(query.limit)) hits.resize(query.limit);
+  return hits;
+}
+
+Expected<int64_t> SqliteMetadataStore::CountClips(ClipState state) {
+  std::lock_guard lock(mutex_);
+  auto stmt = db_.Prepare("SELECT COUNT(*) FROM clips WHERE state = ?1");
+  if (!stmt) return stmt.error();
+  stmt->BindText(1, state == ClipState::kPublished ? "published" : "draft");
+  auto row = stmt->Step();
+  if (!row) return row.error();
+  return stmt->ColumnInt(0);
+}
+
+}  // namespace reenact::server

@@ -1,0 +1,41 @@
+#pragma once
+// MetadataStore on SQLite (schema: migrations/*.sql). Nearby search pre-filters with the
+// clip_boxes R*Tree over the query's covering boxes (server/geo/geodesic.h), then filters and
+// sorts by exact haversine distance. One connection guarded by a mutex.
+
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "server/storage/metadata_store.h"
+#include "server/storage/sqlite.h"
+
+namespace reenact::server {
+
+class SqliteMetadataStore : public MetadataStore {
+ public:
+  // Opens (creating if needed) the database at path and applies pending migrations.
+  static Expected<std::unique_ptr<SqliteMetadataStore>> Open(const std::string& path);
+
+  Expected<UserRecord> AddUser(const std::string& name, const std::string& token_sha256) override;
+  Expected<std::optional<TokenOwner>> FindUserByTokenHash(
+      const std::string& token_sha256) override;
+  Status CreateClip(const NewClip& clip) override;
+  Expected<std::optional<ClipRecord>> GetClip(const std::string& id) override;
+  Expected<std::string> GetManifest(const std::string& id) override;
+  Expected<std::optional<PartRecord>> GetPart(const std::string& id, int index) override;
+  Status MarkPartPresent(const std::string& id, int index) override;
+  Expected<PublishResult> Publish(const std::string& id) override;
+  Expected<bool> DeleteClip(const std::string& id) override;
+  Expected<std::vector<ClipRecord>> ClipsOfOwner(int64_t owner_id) override;
+  Expected<std::vector<NearbyHit>> Nearby(const NearbyQuery& query) override;
+  Expected<int64_t> CountClips(ClipState state) override;
+
+ private:
+  explicit SqliteMetadataStore(sqlite::Database db) : db_(std::move(db)) {}
+
+  std::mutex mutex_;
+  sqlite::Database db_;
+};
+
+}  // namespace reenact::server

@@ -1,0 +1,164 @@
+// Bad input at the process level: each a clear one-line error and a non-zero exit, never a hang.
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "tests/integration/process.h"
+
+namespace reenact {
+namespace {
+
+using testing::RunProcess;
+using testing::TempDir;
+
+const std::string kBin = REENACT_BINARY_DIR;
+const std::string kServer = kBin + "/server/reenact-server";
+const std::string kCapture = kBin + "/capture-client/reenact-capture";
+const std::string kViewer = kBin + "/viewer-client/reenact-viewer";
+constexpr auto kQuick = std::chrono::seconds(30);
+
+// One line of error text (a trailing newline allowed).
+void ExpectOneLineError(const testing::ProcessResult& r, const std::string& needle) {
+  EXPECT_FALSE(r.timed_out) << "hung";
+  EXPECT_NE(r.exit_code, 0);
+  std::string err = r.err;
+  while (!err.empty() && err.back() == '\n') err.pop_back();
+  EXPECT_EQ(err.find('\n'), std::string::npos) << "more than one line:\n" << r.err;
+  EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+}
+
+class ListeningSocket {
+ public:
+  ListeningSocket() {
+    fd_ = socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    bind(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof addr);
+    listen(fd_, 1);
+    socklen_t len = sizeof addr;
+    getsockname(fd_, reinterpret_cast<sockaddr*>(&addr), &len);
+    port_ = ntohs(addr.sin_port);
+  }
+  ~ListeningSocket() { close(fd_); }
+  int port() const { return port_; }
+
+ private:
+  int fd_ = -1;
+  int port_ = 0;
+};
+
+TEST(BadInput, ServerOnTakenPortFailsClearly) {
+  TempDir tmp;
+  ListeningSocket taken;
+  const auto r = RunProcess({kServer, "serve", "--db", tmp.path() + "/db", "--listen",
+                             "127.0.0.1:" + std::to_string(taken.port())},
+                            kQuick);
+  ExpectOneLineError(r, std::to_string(taken.port()));
+}
+
+TEST(BadInput, DemoWithPortTakenFailsClearly) {
+  TempDir tmp;
+  ListeningSocket taken;
+  const auto r = RunProcess({"/bin/bash", std::string(REENACT_SOURCE_DIR) + "/deploy/demo.sh", kBin},
+                            std::chrono::seconds(60),
+                            {"REENACT_DEMO_PORT=" + std::to_string(taken.port()),
+                             "REENACT_DEMO_WORK=" + tmp.path() + "/work",
+                             "REENACT_DEMO_OUT=" + tmp.path() + "/out"});
+  EXPECT_FALSE(r.timed_out);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("reenact-server did not start"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(std::to_string(taken.port())), std::string::npos) << r.err;
+}
+
+TEST(BadInput, UnknownSyntheticScenarioListsKnownOnes) {
+  TempDir tmp;
+  const auto r = RunProcess({kCapture, "record", "--source", "synthetic:no-such-scene", "--out",
+                             tmp.path() + "/clip"}, kQuick);
+  ExpectOneLineError(r, "turn-and-kick");
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() + "/clip"));
+}
+
+TEST(BadInput, MissingSourceOptionIsUsageError) {
+  TempDir tmp;
+  const auto r = RunProcess({kCapture, "record", "--out", tmp.path() + "/clip"}, kQuick);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--source"), std::string::npos) << r.err;
+}
+
+TEST(BadInput, UnknownSourceKindFailsClearly) {
+  TempDir tmp;
+  const auto r = RunProcess({kCapture, "record", "--source", "webcam:0", "--out",
+                             tmp.path() + "/clip"}, kQuick);
+  ExpectOneLineError(r, "unknown source");
+}
+
+TEST(BadInput, BrowseWithServerDownFailsClearly) {
+  const int port = testing::UnusedLoopbackPort();
+  const auto r = RunProcess({kViewer, "browse", "--server", "http://127.0.0.1:" + std::to_string(port),
+                             "--near", "48.1,11.5"}, kQuick);
+  ExpectOneLineError(r, "cannot reach server");
+}
+
+TEST(BadInput, PlayWithServerDownFailsClearly) {
+  TempDir tmp;
+  const int port = testing::UnusedLoopbackPort();
+  const auto r = RunProcess({kViewer, "play", "abc", "--server", "http://127.0.0.1:" + std::to_string(port),
+                             "--headless", "--out", tmp.path() + "/out", "--cache", tmp.path() + "/c"},
+                            kQuick);
+  ExpectOneLineError(r, "cannot reach server");
+}
+
+TEST(BadInput, PublishWithServerDownFailsClearlyAndKeepsTheClip) {
+  TempDir tmp;
+  const std::string clip = tmp.path() + "/clip";
+  const auto rec = RunProcess({kCapture, "record", "--source", "synthetic:turn-and-kick", "--out",
+                               clip, "--frames", "3"}, std::chrono::seconds(120));
+  ASSERT_EQ(rec.exit_code, 0) << rec.err;
+  const int port = testing::UnusedLoopbackPort();
+  const auto r = RunProcess({kCapture, "publish", clip, "--server",
+                             "http://127.0.0.1:" + std::to_string(port), "--token", "t", "--lat",
+                             "1", "--lon", "2"}, kQuick);
+  ExpectOneLineError(r, "cannot reach server");
+  const auto info = RunProcess({kCapture, "info", clip}, kQuick);
+  EXPECT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_NE(info.out.find("frames      3"), std::string::npos) << info.out;
+}
+
+TEST(BadInput, CorruptClipIsRefusedBeforeUpload) {
+  TempDir tmp;
+  const std::string clip = tmp.path() + "/clip";
+  const auto rec = RunProcess({kCapture, "record", "--source", "synthetic:turn-and-kick", "--out",
+                               clip, "--frames", "2"}, std::chrono::seconds(120));
+  ASSERT_EQ(rec.exit_code, 0) << rec.err;
+  {
+    std::fstream f(clip + "/frames/000001.rfrm", std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(100);
+    f.put('\x5a');
+  }
+  const int port = testing::UnusedLoopbackPort();
+  const auto r = RunProcess({kCapture, "publish", clip, "--server",
+                             "http://127.0.0.1:" + std::to_string(port), "--token", "t", "--lat",
+                             "1", "--lon", "2"}, kQuick);
+  EXPECT_NE(r.exit_code, 0);
+  // The damaged frame is found before any byte is sent (so the down server never matters).
+  EXPECT_NE(r.err.find("frame"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("cannot reach"), std::string::npos) << r.err;
+}
+
+TEST(BadInput, LatitudeOutOfRangeIsUsageError) {
+  TempDir tmp;
+  const auto r = RunProcess({kViewer, "browse", "--server", "http://127.0.0.1:1", "--near", "95,10"},
+                            kQuick);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("latitude"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace reenact

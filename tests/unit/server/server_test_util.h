@@ -1,0 +1,134 @@
+#pragma once
+// Shared helpers of the server tests: a temporary directory, valid clips built through
+// proto's manifest writer, and a service over real SQLite storage with two users.
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "proto/clip/content_hash.h"
+#include "proto/clip/manifest.h"
+#include "server/auth/token.h"
+#include "server/http/routes.h"
+#include "server/storage/open_storage.h"
+
+namespace reenact::server::testing {
+
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "reenact-server-XXXXXX").string();
+    REENACT_CHECK(mkdtemp(pattern.data()) != nullptr, "mkdtemp failed");
+    path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+struct TestClip {
+  std::string manifest_json;
+  std::vector<std::string> frames;
+  std::string map;
+};
+
+// A clip at (lat, lon) with `frames` frames whose payloads are distinct, known byte strings.
+inline TestClip MakeTestClip(double lat, double lon, int frames = 3,
+                             const std::string& title = "clip") {
+  TestClip clip;
+  proto::ClipManifest m;
+  m.title = title;
+  m.author = "tester";
+  m.capture_time = "2024-05-01T12:00:00Z";
+  m.location = {lat, lon, 10.0, 3.0, std::nullopt};
+  m.color_camera = {640, 480, 525.0, 525.0, 319.5, 239.5, {}};
+  m.depth_camera = {640, 480, 525.0, 525.0, 319.5, 239.5, {}};
+  for (int i = 0; i < kBodyPartCount; ++i) m.radius_ratio[i] = 0.2;
+  m.frame_count = frames;
+  m.representative_frame = 0;
+  m.frame_rate_hz = 10;
+  for (int i = 0; i < frames; ++i) {
+    clip.frames.push_back("frame-" + std::to_string(i) + "-" + title + std::string(10 + i, 'x'));
+    m.frame_parts.push_back({clip.frames.back().size(), proto::Sha256Hex(clip.frames.back())});
+  }
+  clip.map = "map-of-" + title + std::string(100, 'm');
+  m.map_part = {clip.map.size(), proto::Sha256Hex(clip.map)};
+  clip.manifest_json = proto::SerializeManifest(m);
+  return clip;
+}
+
+// Real storage in a temp dir, a metrics sink, and two users with their tokens.
+class ServiceFixture : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    auto opened = OpenSqliteStorage((dir_.path() / "db.sqlite").string());
+    ASSERT_TRUE(opened.ok()) << opened.error().message;
+    storage_ = std::move(*opened);
+    context_ = std::make_unique<ServiceContext>(
+        ServiceContext{*storage_.metadata, *storage_.blobs, metrics_, ServiceLimits{}});
+    auto a = AddUserWithToken(*storage_.metadata, "alice");
+    auto b = AddUserWithToken(*storage_.metadata, "bob");
+    ASSERT_TRUE(a.ok() && b.ok());
+    alice_ = *a;
+    bob_ = *b;
+  }
+
+  Response Call(const std::string& method, const std::string& target,
+                const std::string& token = "", const std::string& body = "",
+                const std::string& content_type = "") {
+    Request request;
+    request.method = method;
+    request.target = target;
+    if (!token.empty()) request.headers.emplace_back("Authorization", "Bearer " + token);
+    if (!content_type.empty()) request.headers.emplace_back("Content-Type", content_type);
+    request.body = body;
+    return Handle(request, *context_);
+  }
+
+  // Creates the clip as `token`'s user and returns its id.
+  std::string Create(const TestClip& clip, const std::string& token) {
+    Response r = Call("POST", "/v1/clips", token, clip.manifest_json, "application/json");
+    EXPECT_EQ(r.status, 201) << r.body;
+    return nlohmann::json::parse(r.body).at("id").get<std::string>();
+  }
+
+  // Creates, uploads every part and publishes.
+  std::string Publish(const TestClip& clip, const std::string& token) {
+    const std::string id = Create(clip, token);
+    for (size_t n = 0; n < clip.frames.size(); ++n) {
+      EXPECT_EQ(Call("PUT", "/v1/clips/" + id + "/frames/" + std::to_string(n), token,
+                     clip.frames[n], "application/octet-stream")
+                    .status,
+                204);
+    }
+    EXPECT_EQ(Call("PUT", "/v1/clips/" + id + "/map", token, clip.map, "application/octet-stream")
+                  .status,
+              204);
+    EXPECT_EQ(Call("POST", "/v1/clips/" + id + "/publish", token).status, 200);
+    return id;
+  }
+
+  static std::string ErrorCode(const Response& r) {
+    return nlohmann::json::parse(r.body).at("error").at("code").get<std::string>();
+  }
+  static std::string ErrorMessage(const Response& r) {
+    return nlohmann::json::parse(r.body).at("error").at("message").get<std::string>();
+  }
+
+  TempDir dir_;
+  Storage storage_;
+  Metrics metrics_;
+  std::unique_ptr<ServiceContext> context_;
+  std::string alice_;
+  std::string bob_;
+};
+
+}  // namespace reenact::server::testing

@@ -1,0 +1,159 @@
+// Storage on real SQLite files in a temp dir: migrations, transactions, blobs.
+#include <gtest/gtest.h>
+
+#include "server/storage/migrations.h"
+#include "server/storage/sqlite.h"
+#include "tests/unit/server/server_test_util.h"
+
+namespace reenact::server {
+namespace {
+
+using testing::TempDir;
+
+int64_t CountRows(sqlite::Database& db, const std::string& sql) {
+  auto stmt = db.Prepare(sql);
+  EXPECT_TRUE(stmt.ok());
+  auto row = stmt->Step();
+  EXPECT_TRUE(row.ok() && *row);
+  return stmt->ColumnInt(0);
+}
+
+bool TableExists(sqlite::Database& db, const std::string& name) {
+  return CountRows(db, "SELECT COUNT(*) FROM sqlite_master WHERE type='table' AND name='" +
+                           name + "'") == 1;
+}
+
+TEST(Migrations, EmbeddedSchemaAppliesOnceAndReopens) {
+  TempDir dir;
+  const std::string path = (dir.path() / "db.sqlite").string();
+  ASSERT_TRUE(OpenSqliteStorage(path).ok());
+  ASSERT_TRUE(OpenSqliteStorage(path).ok());
+  auto db = sqlite::Database::Open(path);
+  ASSERT_TRUE(db.ok());
+  EXPECT_EQ(*SchemaVersion(*db), static_cast<int>(EmbeddedMigrations().size()));
+  EXPECT_TRUE(TableExists(*db, "clips"));
+  EXPECT_EQ(CountRows(*db, "PRAGMA foreign_keys"), 1);
+}
+
+TEST(Migrations, EachFileRunsExactlyOnce) {
+  TempDir dir;
+  auto db = sqlite::Database::Open((dir.path() / "m.sqlite").string());
+  ASSERT_TRUE(db.ok());
+  const std::vector<MigrationFile> files = {
+      {"0001_t.sql", "CREATE TABLE t(x); INSERT INTO t VALUES (1);"}};
+  ASSERT_TRUE(ApplyMigrations(*db, files).ok());
+  ASSERT_TRUE(ApplyMigrations(*db, files).ok());
+  EXPECT_EQ(CountRows(*db, "SELECT COUNT(*) FROM t"), 1);
+  EXPECT_EQ(*SchemaVersion(*db), 1);
+}
+
+TEST(Migrations, FailingFileRollsBackAndKeepsVersion) {
+  TempDir dir;
+  auto db = sqlite::Database::Open((dir.path() / "m.sqlite").string());
+  ASSERT_TRUE(db.ok());
+  const std::vector<MigrationFile> files = {
+      {"0001_t.sql", "CREATE TABLE t(x);"},
+      {"0002_bad.sql", "CREATE TABLE u(x); INSERT INTO missing_table VALUES (1);"}};
+  Status s = ApplyMigrations(*db, files);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.error().code, "migration_failed");
+  EXPECT_NE(s.error().message.find("0002_bad.sql"), std::string::npos);
+  EXPECT_EQ(*SchemaVersion(*db), 1);
+  EXPECT_TRUE(TableExists(*db, "t"));
+  EXPECT_FALSE(TableExists(*db, "u"));
+}
+
+TEST(Migrations, NewerDatabaseIsRefused) {
+  TempDir dir;
+  const std::string path = (dir.path() / "db.sqlite").string();
+  {
+    auto db = sqlite::Database::Open(path);
+    ASSERT_TRUE(db.ok());
+    ASSERT_TRUE(db->Exec("PRAGMA user_version = 99").ok());
+  }
+  auto storage = OpenSqliteStorage(path);
+  ASSERT_FALSE(storage.ok());
+  EXPECT_EQ(storage.error().code, "schema_too_new");
+  EXPECT_NE(storage.error().message.find("99"), std::string::npos);
+  EXPECT_NE(storage.error().message.find("newer reenact-server"), std::string::npos);
+}
+
+TEST(Migrations, BadFileNamesAreRejected) {
+  EXPECT_FALSE(MigrationVersion("init.sql").ok());
+  EXPECT_FALSE(MigrationVersion("0001_init.txt").ok());
+  EXPECT_EQ(*MigrationVersion("0012_x.sql"), 12);
+  TempDir dir;
+  auto db = sqlite::Database::Open((dir.path() / "m.sqlite").string());
+  const std::vector<MigrationFile> gap = {{"0002_x.sql", "SELECT 1;"}};
+  EXPECT_FALSE(ApplyMigrations(*db, gap).ok());
+}
+
+TEST(Sqlite, TransactionRollsBackUnlessCommitted) {
+  TempDir dir;
+  auto db = sqlite::Database::Open((dir.path() / "t.sqlite").string());
+  ASSERT_TRUE(db.ok());
+  ASSERT_TRUE(db->Exec("CREATE TABLE t(x)").ok());
+  {
+    auto tx = sqlite::Transaction::Begin(*db);
+    ASSERT_TRUE(tx.ok());
+    ASSERT_TRUE(db->Exec("INSERT INTO t VALUES (1)").ok());
+  }
+  EXPECT_EQ(CountRows(*db, "SELECT COUNT(*) FROM t"), 0);
+  {
+    auto tx = sqlite::Transaction::Begin(*db);
+    ASSERT_TRUE(db->Exec("INSERT INTO t VALUES (2)").ok());
+    ASSERT_TRUE(tx->Commit().ok());
+  }
+  EXPECT_EQ(CountRows(*db, "SELECT COUNT(*) FROM t"), 1);
+  auto mode = db->Prepare("PRAGMA journal_mode");
+  ASSERT_TRUE(mode.ok() && *mode->Step());
+  EXPECT_EQ(mode->ColumnText(0), "wal");
+}
+
+TEST(Sqlite, MissingDirectoryIsAClearError) {
+  auto storage = OpenSqliteStorage("/nonexistent-reenact-dir/sub/db.sqlite");
+  ASSERT_FALSE(storage.ok());
+  EXPECT_EQ(storage.error().code, "io");
+  EXPECT_NE(storage.error().message.find("does not exist"), std::string::npos);
+}
+
+TEST(Sqlite, ClipCreationIsAllOrNothing) {
+  TempDir dir;
+  auto storage = OpenSqliteStorage((dir.path() / "db.sqlite").string());
+  ASSERT_TRUE(storage.ok());
+  auto user = storage->metadata->AddUser("u", std::string(64, 'a'));
+  ASSERT_TRUE(user.ok());
+  NewClip clip;
+  clip.record.id = "c1";
+  clip.record.owner_id = user->id;
+  clip.manifest_json = "{}";
+  // Two parts with the same index violate the primary key after the clip row was inserted.
+  clip.parts = {{0, 1, std::string(64, 'b')}, {0, 1, std::string(64, 'c')}};
+  EXPECT_FALSE(storage->metadata->CreateClip(clip).ok());
+  auto found = storage->metadata->GetClip("c1");
+  ASSERT_TRUE(found.ok());
+  EXPECT_FALSE(found->has_value());
+  clip.parts.pop_back();
+  EXPECT_TRUE(storage->metadata->CreateClip(clip).ok());
+}
+
+TEST(BlobStore, PutReplaceGetAndDeleteByPrefix) {
+  TempDir dir;
+  auto storage = OpenSqliteStorage((dir.path() / "db.sqlite").string());
+  ASSERT_TRUE(storage.ok());
+  BlobStore& blobs = *storage->blobs;
+  const std::string binary("a\0b\xff", 4);
+  ASSERT_TRUE(blobs.Put("ab/frames/0", binary).ok());
+  ASSERT_TRUE(blobs.Put("ab/map", "old").ok());
+  ASSERT_TRUE(blobs.Put("ab/map", "new").ok());
+  ASSERT_TRUE(blobs.Put("abc/map", "other clip").ok());
+  EXPECT_EQ(**blobs.Get("ab/frames/0"), binary);
+  EXPECT_EQ(**blobs.Get("ab/map"), "new");
+  ASSERT_TRUE(blobs.DeletePrefix("ab/").ok());
+  EXPECT_FALSE(blobs.Get("ab/frames/0")->has_value());
+  EXPECT_FALSE(blobs.Get("ab/map")->has_value());
+  EXPECT_EQ(**blobs.Get("abc/map"), "other clip");
+}
+
+}  // namespace
+}  // namespace reenact::server

@@ -1,0 +1,78 @@
+#include "viewer-client/play/reenactment.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "tests/unit/common/test_skeletons.h"
+
+namespace reenact::viewer {
+namespace {
+
+// A clip of a person turning in place in front of a static sensor at the world origin
+// (world = sensor frame), yaw 0, 10, ..., 350 degrees, each frame's crop a flat 4x4 patch.
+Reenactment TurningClip() {
+  proto::ClipManifest manifest;
+  manifest.color_camera = PinholeCamera::KinectLike();
+  manifest.depth_camera = manifest.color_camera;
+  manifest.radius_ratio = DefaultRadiusRatios();
+  std::vector<proto::ClipFrame> frames;
+  for (int d = 0; d < 360; d += 10) {
+    proto::ClipFrame f;
+    f.skeleton_in_world = testing::StandingPerson(3.0, d * M_PI / 180, true);
+    f.color = ImageRgb8(4, 4, 3, 100);
+    f.depth = ImageDepthMm(4, 4, 1, 3000);
+    f.mask = ImageGray8(4, 4, 1, 255);
+    frames.push_back(f);
+  }
+  manifest.frame_count = static_cast<int64_t>(frames.size());
+  return Reenactment(manifest, std::move(frames));
+}
+
+TEST(Reenactment, ViewerAtTheSensorReusesTheSameFrameWithIdentityMapping) {
+  const Reenactment r = TurningClip();
+  const PinholeCamera cam = PinholeCamera::KinectLike();
+  for (int k : {0, 7, 20}) {
+    const ReenactedFrame f = r.Build(k, cam, Eigen::Isometry3d::Identity(), [](int n) { return n; });
+    EXPECT_EQ(f.texture_frame, k);
+    ASSERT_EQ(f.draw.cylinders.size(), static_cast<size_t>(kBodyPartCount));
+    for (const CylinderDraw& c : f.draw.cylinders) {
+      EXPECT_EQ(c.texture, k);
+      EXPECT_LT((c.stored_from_viewer - Eigen::Matrix4d::Identity()).norm(), 1e-9);
+    }
+  }
+}
+
+TEST(Reenactment, ViewerBehindTheSubjectSeesTheFrameTurnedHalfWay) {
+  const Reenactment r = TurningClip();
+  // Viewer on the far side: turned 180 degrees about the vertical (-y) axis through the
+  // subject at z = 3, looking back at it.
+  Eigen::Isometry3d world_from_viewer = Eigen::Isometry3d::Identity();
+  world_from_viewer.translate(Eigen::Vector3d(0, 0, 3));
+  world_from_viewer.rotate(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitY()));
+  world_from_viewer.translate(Eigen::Vector3d(0, 0, -3));
+  const ReenactedFrame f =
+      r.Build(2, PinholeCamera::KinectLike(), world_from_viewer.inverse(), [](int n) { return n; });
+  EXPECT_EQ(f.texture_frame, 2 + 18);  // 20 + 180 degrees
+}
+
+TEST(Reenactment, FramesWithoutVisibleSubjectAreNeverChosen) {
+  proto::ClipManifest manifest;
+  manifest.color_camera = PinholeCamera::KinectLike();
+  manifest.radius_ratio = DefaultRadiusRatios();
+  std::vector<proto::ClipFrame> frames(2);
+  for (auto& f : frames) {
+    f.skeleton_in_world = testing::StandingPerson(3.0, 0, true);
+    f.color = ImageRgb8(4, 4, 3, 0);
+    f.depth = ImageDepthMm(4, 4, 1, 0);
+    f.mask = ImageGray8(4, 4, 1, 0);
+  }
+  frames[1].mask = ImageGray8(4, 4, 1, 255);
+  manifest.frame_count = 2;
+  const Reenactment r(manifest, std::move(frames));
+  EXPECT_EQ(r.Build(0, PinholeCamera::KinectLike(), Eigen::Isometry3d::Identity(),
+                    [](int n) { return n; }).texture_frame, 1);
+}
+
+}  // namespace
+}  // namespace reenact::viewer

@@ -1,0 +1,141 @@
+#include "viewer-client/play/headless_player.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <map>
+
+#include <nlohmann/json.hpp>
+
+#include "common/error/check.h"
+#include "viewer-client/output/contact_sheet.h"
+#include "viewer-client/output/mp4_writer.h"
+#include "viewer-client/output/png_writer.h"
+#include "viewer-client/play/viewer_camera.h"
+#include "viewer-client/render/renderer.h"
+
+namespace reenact::viewer {
+namespace {
+
+nlohmann::json PoseJson(const Eigen::Isometry3d& pose) {
+  nlohmann::json m = nlohmann::json::array();
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) m.push_back(pose.matrix()(r, c));
+  return m;
+}
+
+}  // namespace
+
+void HeadlessPlayOptions::Check() const {
+  REENACT_CHECK(!out_dir.empty(), "out_dir must be set");
+  REENACT_CHECK(max_frames == -1 || max_frames >= 1, "max_frames must be -1 or >= 1");
+  REENACT_CHECK(width >= 16 && height >= 16, "output must be at least 16x16");
+  REENACT_CHECK(contact_sheet_columns >= 1, "contact_sheet_columns must be >= 1");
+  REENACT_CHECK(contact_sheet_thumb_width >= 16, "contact_sheet_thumb_width must be >= 16");
+  orbit.Check();
+}
+
+Expected<PlaySummary> PlayHeadless(const Reenactment& reenactment, const std::string& clip_id,
+                                   const HeadlessPlayOptions& options) {
+  options.Check();
+  const auto start = std::chrono::steady_clock::now();
+  std::error_code ec;
+  std::filesystem::create_directories(options.out_dir / "frames", ec);
+  if (ec)
+    return MakeError("io", "cannot create output folder " + options.out_dir.string() + ": " +
+                               ec.message());
+
+  auto renderer = Renderer::CreateHeadless(options.width, options.height);
+  if (!renderer.ok()) return renderer.error();
+
+  const proto::ClipManifest& manifest = reenactment.manifest();
+  const PinholeCamera camera =
+      ScaledViewerCamera(manifest.color_camera, options.width, options.height);
+  const auto view = OrbitViewFor(reenactment, options.orbit);
+  if (!view)
+    return MakeError("degenerate", "cannot place the orbit camera: the capture sensor stands on "
+                                   "the subject's vertical axis");
+
+  std::map<int, int> texture_of_frame;
+  auto texture_for_frame = [&](int n) {
+    auto it = texture_of_frame.find(n);
+    if (it == texture_of_frame.end())
+      it = texture_of_frame.emplace(n, renderer->UploadTexture(reenactment.Texture(n))).first;
+    return it->second;
+  };
+
+  const int frames = options.max_frames < 0
+                         ? reenactment.frame_count()
+                         : std::min(options.max_frames, reenactment.frame_count());
+  std::vector<ImageRgb8> rendered;
+  std::vector<double> render_seconds;
+  nlohmann::json frames_json = nlohmann::json::array();
+  for (int k = 0; k < frames; ++k) {
+    ReenactedFrame rf = reenactment.Build(k, camera, view->viewer_from_world, texture_for_frame);
+    rf.draw.floor = view->floor;
+    rf.draw.textured = options.textured;
+    if (!options.draw_skeleton) rf.draw.bones.clear();
+    const auto t0 = std::chrono::steady_clock::now();
+    RenderedFrame out = renderer->Render(rf.draw);
+    render_seconds.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d.png", k);
+    if (Status s = WritePng((options.out_dir / "frames" / name).string(), out.color); !s.ok())
+      return s.error();
+    if (options.write_masks) {
+      std::snprintf(name, sizeof name, "mask_%04d.png", k);
+      if (Status s = WritePng((options.out_dir / "frames" / name).string(), out.subject_mask); !s.ok())
+        return s.error();
+      std::snprintf(name, sizeof name, "frame_%04d.png", k);
+    }
+    frames_json.push_back({{"output", k},
+                           {"clip_frame", rf.clip_frame},
+                           {"texture_frame", rf.texture_frame},
+                           {"file", std::string("frames/") + name}});
+    rendered.push_back(std::move(out.color));
+  }
+
+  PlaySummary summary;
+  summary.clip_id = clip_id;
+  summary.frames = frames;
+  std::vector<double> sorted = render_seconds;
+  std::sort(sorted.begin(), sorted.end());
+  if (!sorted.empty() && sorted[sorted.size() / 2] > 0)
+    summary.render_fps = 1.0 / sorted[sorted.size() / 2];
+
+  const ImageRgb8 sheet = MakeContactSheet(rendered, options.contact_sheet_columns,
+                                           options.contact_sheet_thumb_width);
+  if (Status s = WritePng((options.out_dir / "contact_sheet.png").string(), sheet); !s.ok()) return s.error();
+
+  if (options.write_mp4 && !rendered.empty()) {
+    const std::filesystem::path mp4 = options.out_dir / "reenactment.mp4";
+    auto writer = Mp4Writer::Open(mp4.string(), options.width, options.height, manifest.frame_rate_hz);
+    if (writer.ok()) {
+      for (const ImageRgb8& f : rendered)
+        if (Status s = writer->Write(f); !s.ok()) return s.error();
+      writer->Close();
+      summary.mp4_path = mp4.string();
+    } else {
+      summary.mp4_warning = writer.error().message;
+    }
+  }
+
+  const nlohmann::json render = {
+      {"clip_id", clip_id},
+      {"presentation", "orbit"},
+      {"orbit_angle_deg", options.orbit.angle_deg},
+      {"camera",
+       {{"width", camera.width}, {"height", camera.height}, {"fx", camera.fx}, {"fy", camera.fy},
+        {"cx", camera.cx}, {"cy", camera.cy}}},
+      {"world_from_viewer", PoseJson(view->world_from_viewer)},
+      {"render_fps", summary.render_fps},
+      {"frames", frames_json}};
+  std::ofstream(options.out_dir / "render.json") << render.dump(2) << "\n";
+  summary.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace reenact::viewer

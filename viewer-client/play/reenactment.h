@@ -1,0 +1,54 @@
+#pragma once
+// The reenactment of a clip (thesis Sec. 3.4): for an output frame k and a viewer camera,
+// pose the cylinder model from stored skeleton S'_k in the viewer frame (S*_k = M* S'_k),
+// choose the stored frame n_bar by Eq. 5 and map every cylinder onto that frame's cylinder
+// (Eq. 6-16), producing the renderer's draw list.
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "common/model/cylinder_model.h"
+#include "proto/clip/frame_codec.h"
+#include "proto/clip/manifest.h"
+#include "viewer-client/render/renderer.h"
+
+namespace reenact::viewer {
+
+struct ReenactedFrame {
+  FrameDraw draw;
+  int clip_frame = -1;     // k
+  int texture_frame = -1;  // n_bar, -1 if no stored frame could be chosen
+};
+
+class Reenactment {
+ public:
+  // frames: the clip's decoded frames, in order (manifest.frame_count of them).
+  Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFrame> frames);
+
+  int frame_count() const { return static_cast<int>(frames_.size()); }
+  const proto::ClipManifest& manifest() const { return manifest_; }
+  const proto::ClipFrame& frame(int n) const { return frames_.at(n); }
+
+  // Mean waist position over the clip (world frame): the centre the orbit camera turns about.
+  Eigen::Vector3d SubjectCentre() const;
+
+  // The stored crop of frame n as the renderer uploads it.
+  StoredTexture Texture(int n) const;
+
+  // Draw list for output frame k seen by a viewer camera. texture_for_frame maps a stored
+  // frame index to the renderer's texture index (the caller uploads Texture(n) on demand).
+  ReenactedFrame Build(int k, const PinholeCamera& viewer_camera,
+                       const Eigen::Isometry3d& viewer_from_world,
+                       const std::function<int(int)>& texture_for_frame) const;
+
+ private:
+  proto::ClipManifest manifest_;
+  std::vector<proto::ClipFrame> frames_;
+  std::vector<Skeleton> skeletons_in_sensor_;  // S_n = M_n S'_n
+  std::unique_ptr<bool[]> usable_;             // frames with a visible subject
+};
+
+}  // namespace reenact::viewer
