@@ -1,0 +1,35 @@
+#pragma once
+// The output of `reenact-eval` and `reenact-bench` (DESIGN.md): a readable table on stdout
+// and, with --json FILE, {"command": "...", "rows": [ {...}, ... ]} with one flat object per
+// row, labels and figures under the names DESIGN.md fixes (psnr_db, iou, ms_per_frame, ...).
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "common/error/expected.h"
+
+namespace reenact::proto {
+
+using ReportValue = std::variant<std::string, double, long long>;
+
+struct ReportRow {
+  std::vector<std::pair<std::string, ReportValue>> cells;  // column name -> value, in order
+
+  ReportRow& Add(std::string name, ReportValue value) {
+    cells.emplace_back(std::move(name), std::move(value));
+    return *this;
+  }
+};
+
+struct Report {
+  std::string command;  // e.g. "quality"
+  std::vector<ReportRow> rows;
+
+  // Columns in first-seen order; doubles with `precision` decimals; missing cells blank.
+  std::string FormatTable(int precision = 3) const;
+  std::string ToJson() const;
+  Status WriteJson(const std::string& path) const;
+};
+
+}  // namespace reenact::proto

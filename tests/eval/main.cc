@@ -1,0 +1,103 @@
+// reenact-eval: accuracy against ground truth. `quality` today; slam, reloc and tracker
+// arrive with their components.
+#include <iostream>
+#include <sstream>
+
+#include "common/cli/command_line.h"
+#include "proto/report/report_table.h"
+#include "tests/eval/quality_eval.h"
+
+namespace {
+
+using namespace reenact;
+
+constexpr const char* kUsage =
+    "usage:\n"
+    "  reenact-eval quality [--scenario S] [--methods LIST] [--views DEG,...] [--step K]\n"
+    "                       [--json FILE]\n"
+    "  reenact-eval slam|reloc|tracker ...   (not in this build yet)\n";
+
+int Fail(const Error& e) {
+  std::cerr << "reenact-eval: " << e.message << "\n";
+  return e.code == "usage" ? 2 : 1;
+}
+
+Expected<std::vector<std::string>> SplitList(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  if (out.empty()) return MakeError("usage", "empty list '" + text + "'");
+  return out;
+}
+
+int Quality(const CommandLine& cl) {
+  eval::QualityOptions options;
+  options.scenario = cl.GetOr("scenario", options.scenario);
+  if (auto m = cl.Get("methods")) {
+    auto list = SplitList(*m);
+    if (!list.ok()) return Fail(list.error());
+    options.methods = *list;
+  }
+  if (auto v = cl.Get("views")) {
+    auto list = SplitList(*v);
+    if (!list.ok()) return Fail(list.error());
+    options.views_deg.clear();
+    for (const std::string& s : *list) {
+      char* end = nullptr;
+      const double d = std::strtod(s.c_str(), &end);
+      if (end != s.c_str() + s.size()) return Fail(MakeError("usage", "--views: not a number: " + s));
+      options.views_deg.push_back(d);
+    }
+  }
+  const auto step = cl.GetInt("step", options.frame_step);
+  if (!step.ok()) return Fail(step.error());
+  if (*step < 1) return Fail(MakeError("usage", "--step must be >= 1"));
+  options.frame_step = static_cast<int>(*step);
+
+  const auto rows = eval::RunQuality(options);
+  if (!rows.ok()) return Fail(rows.error());
+  proto::Report report{"quality", {}};
+  for (const auto& r : *rows)
+    report.rows.push_back(proto::ReportRow{}
+                              .Add("method", r.method)
+                              .Add("scenario", r.scenario)
+                              .Add("view_deg", r.view_deg)
+                              .Add("n", static_cast<long long>(r.n))
+                              .Add("psnr_db", r.psnr_db)
+                              .Add("ssim", r.ssim)
+                              .Add("iou", r.iou)
+                              .Add("colour_mae", r.colour_mae)
+                              .Add("ms_per_frame", r.ms_per_frame));
+  std::cout << report.FormatTable();
+  if (auto json = cl.Get("json"))
+    if (Status s = report.WriteJson(*json); !s.ok()) return Fail(s.error());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const CommandLineSpec spec{{"scenario", "methods", "views", "step", "json"}, {"help"}};
+  const auto cl = CommandLine::Parse(argc, argv, 1, spec);
+  if (!cl.ok()) {
+    std::cerr << "reenact-eval: " << cl.error().message << "\n" << kUsage;
+    return 2;
+  }
+  const std::string command = cl->positionals().empty() ? "" : cl->positionals()[0];
+  if (cl->Has("help")) {
+    std::cout << kUsage;
+    return 0;
+  }
+  try {
+    if (command == "quality") return Quality(*cl);
+  } catch (const std::exception& e) {
+    std::cerr << "reenact-eval: internal error: " << e.what() << "\n";
+    return 3;
+  }
+  if (command == "slam" || command == "reloc" || command == "tracker")
+    return Fail(MakeError("unsupported", "'" + command + "' is not in this build yet: it arrives "
+                                         "with SLAM, relocalisation and the depth tracker"));
+  std::cerr << "reenact-eval: unknown command '" << command << "'\n" << kUsage;
+  return 2;
+}
