@@ -21,10 +21,7 @@ constexpr const char* kUsage =
     "  reenact-capture publish DIR --server URL --token T --lat DEG --lon DEG [--alt M]\n"
     "                          [--accuracy M] [--title S]\n";
 
-int Fail(const Error& e) {
-  std::cerr << "reenact-capture: " << e.message << "\n";
-  return e.code == "usage" ? 2 : 1;
-}
+int Fail(const Error& e) { return ReportFailure("reenact-capture", e); }
 
 int Record(const CommandLine& cl) {
   const auto source_spec = cl.Require("source");
@@ -48,11 +45,12 @@ int Record(const CommandLine& cl) {
   std::cout << "recording " << (*source)->info().description << " -> " << *out << std::endl;
   const auto summary = capture::RecordClip(**source, *out, options);
   if (!summary.ok()) return Fail(summary.error());
-  std::printf("recorded %d frames in %.1f s: %.1f KB per frame, map %zu points (%.1f KB), "
-              "representative frame %d, %d of 11 radii fitted\n",
-              summary->frames, summary->seconds, summary->frame_bytes / 1024.0 / summary->frames,
-              summary->map_points, summary->map_bytes / 1024.0, summary->representative_frame,
-              summary->fitted_parts);
+  std::printf(
+      "recorded %d frames in %.1f s: %.1f KB per frame, map %zu points (%.1f KB), "
+      "representative frame %d, %d of 11 radii fitted\n",
+      summary->frames, summary->seconds, summary->frame_bytes / 1024.0 / summary->frames,
+      summary->map_points, summary->map_bytes / 1024.0, summary->representative_frame,
+      summary->fitted_parts);
   return 0;
 }
 
@@ -64,8 +62,8 @@ int Info(const CommandLine& cl) {
   uint64_t bytes = m.map_part.bytes;
   for (const auto& p : m.frame_parts) bytes += p.bytes;
   std::printf("clip        %s\n", clip->path().c_str());
-  std::printf("title       %s\nauthor      %s\ncaptured    %s\n", m.title.c_str(),
-              m.author.c_str(), m.capture_time.c_str());
+  std::printf("title       %s\nauthor      %s\ncaptured    %s\n", m.title.c_str(), m.author.c_str(),
+              m.capture_time.c_str());
   std::printf("frames      %lld at %.1f Hz (%.2f s)\n", static_cast<long long>(m.frame_count),
               m.frame_rate_hz, m.DurationS());
   std::printf("camera      %dx%d fx %.1f fy %.1f cx %.1f cy %.1f\n", m.color_camera.width,
@@ -88,7 +86,8 @@ int Publish(const CommandLine& cl) {
   if (cl.positionals().size() != 2) return Fail(MakeError("usage", "publish needs a clip DIR"));
   capture::PublishOptions options;
   for (const char* flag : {"server", "token"})
-    if (!cl.Get(flag)) return Fail(MakeError("usage", std::string("missing required option --") + flag));
+    if (!cl.Get(flag))
+      return Fail(MakeError("usage", std::string("missing required option --") + flag));
   options.server_url = *cl.Get("server");
   options.token = *cl.Get("token");
   const auto lat = cl.RequireDouble("lat");
@@ -116,25 +115,7 @@ int Publish(const CommandLine& cl) {
 int main(int argc, char** argv) {
   const CommandLineSpec spec{{"source", "out", "frames", "skeleton", "title", "author", "server",
                               "token", "lat", "lon", "alt", "accuracy"},
-                             {"help"}};
-  const auto cl = CommandLine::Parse(argc, argv, 1, spec);
-  if (!cl.ok()) {
-    std::cerr << "reenact-capture: " << cl.error().message << "\n" << kUsage;
-    return 2;
-  }
-  const std::string command = cl->positionals().empty() ? "" : cl->positionals()[0];
-  if (cl->Has("help") || command == "help") {
-    std::cout << kUsage;
-    return 0;
-  }
-  try {
-    if (command == "record") return Record(*cl);
-    if (command == "info") return Info(*cl);
-    if (command == "publish") return Publish(*cl);
-  } catch (const std::exception& e) {
-    std::cerr << "reenact-capture: internal error: " << e.what() << "\n";
-    return 3;
-  }
-  std::cerr << "reenact-capture: unknown command '" << command << "'\n" << kUsage;
-  return 2;
+                             {}};
+  return RunTool("reenact-capture", kUsage, spec,
+                 {{"record", Record}, {"info", Info}, {"publish", Publish}}, argc, argv);
 }

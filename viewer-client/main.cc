@@ -1,7 +1,6 @@
 // reenact-viewer: find clips nearby and watch them reenacted.
 #include <cstdio>
 #include <iostream>
-
 #include <nlohmann/json.hpp>
 
 #include "common/cli/command_line.h"
@@ -21,10 +20,7 @@ constexpr const char* kUsage =
     "                      [--headless --out DIR] [--frames N] [--width W --height H]\n"
     "                      [--cache DIR] [--bare] [--skeleton] [--no-mp4]\n";
 
-int Fail(const Error& e) {
-  std::cerr << "reenact-viewer: " << e.message << "\n";
-  return e.code == "usage" ? 2 : 1;
-}
+int Fail(const Error& e) { return ReportFailure("reenact-viewer", e); }
 
 int Browse(const CommandLine& cl) {
   const auto server = cl.Require("server");
@@ -50,7 +46,8 @@ int Browse(const CommandLine& cl) {
               "FRAMES");
   for (const auto& c : *clips)
     std::printf("%-24s %-28.28s %-12.12s %8.1f m %7.1f s %7lld\n", c.id.c_str(), c.title.c_str(),
-                c.author.c_str(), c.distance_m, c.duration_s, static_cast<long long>(c.frame_count));
+                c.author.c_str(), c.distance_m, c.duration_s,
+                static_cast<long long>(c.frame_count));
   std::printf("%zu clip(s) within %.0f m of %.6f,%.6f\n", clips->size(), *radius, latlon->first,
               latlon->second);
   return 0;
@@ -107,11 +104,12 @@ int Play(const CommandLine& cl) {
   }
   const auto summary = viewer::PlayHeadless(reenactment, clip_id, options);
   if (!summary.ok()) return Fail(summary.error());
-  std::printf("rendered %d frames from %.0f degrees around the subject in %.1f s "
-              "(render %.1f fps)\n",
-              summary->frames, options.orbit.angle_deg, summary->seconds, summary->render_fps);
-  std::printf("wrote %s/frames/, %s/contact_sheet.png%s, %s/render.json\n",
-              options.out_dir.c_str(), options.out_dir.c_str(),
+  std::printf(
+      "rendered %d frames from %.0f degrees around the subject in %.1f s "
+      "(render %.1f fps)\n",
+      summary->frames, options.orbit.angle_deg, summary->seconds, summary->render_fps);
+  std::printf("wrote %s/frames/, %s/contact_sheet.png%s, %s/render.json\n", options.out_dir.c_str(),
+              options.out_dir.c_str(),
               summary->mp4_path.empty() ? "" : (", " + summary->mp4_path).c_str(),
               options.out_dir.c_str());
   if (!summary->mp4_warning.empty())
@@ -124,24 +122,6 @@ int Play(const CommandLine& cl) {
 int main(int argc, char** argv) {
   const CommandLineSpec spec{{"server", "near", "radius-m", "limit", "camera", "orbit-deg", "out",
                               "frames", "width", "height", "cache"},
-                             {"json", "headless", "bare", "skeleton", "no-mp4", "masks", "help"}};
-  const auto cl = CommandLine::Parse(argc, argv, 1, spec);
-  if (!cl.ok()) {
-    std::cerr << "reenact-viewer: " << cl.error().message << "\n" << kUsage;
-    return 2;
-  }
-  const std::string command = cl->positionals().empty() ? "" : cl->positionals()[0];
-  if (cl->Has("help") || command == "help") {
-    std::cout << kUsage;
-    return 0;
-  }
-  try {
-    if (command == "browse") return Browse(*cl);
-    if (command == "play") return Play(*cl);
-  } catch (const std::exception& e) {
-    std::cerr << "reenact-viewer: internal error: " << e.what() << "\n";
-    return 3;
-  }
-  std::cerr << "reenact-viewer: unknown command '" << command << "'\n" << kUsage;
-  return 2;
+                             {"json", "headless", "bare", "skeleton", "no-mp4", "masks"}};
+  return RunTool("reenact-viewer", kUsage, spec, {{"browse", Browse}, {"play", Play}}, argc, argv);
 }

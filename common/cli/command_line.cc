@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <exception>
+#include <iostream>
 
 namespace reenact {
 namespace {
@@ -89,17 +91,52 @@ Expected<long long> CommandLine::GetInt(const std::string& flag, long long fallb
   return n;
 }
 
+int ReportFailure(const std::string& tool, const Error& error) {
+  std::cerr << tool << ": " << error.message << "\n";
+  return error.code == "usage" ? 2 : 1;
+}
+
+int RunTool(const std::string& tool, const std::string& usage, CommandLineSpec spec,
+            const std::map<std::string, CommandHandler>& commands, int argc,
+            const char* const* argv) {
+  spec.switch_flags.insert("help");
+  const auto cl = CommandLine::Parse(argc, argv, 1, spec);
+  if (!cl.ok()) {
+    std::cerr << tool << ": " << cl.error().message << "\n" << usage;
+    return 2;
+  }
+  const std::string command = cl->positionals().empty() ? "" : cl->positionals()[0];
+  if (cl->Has("help") || command == "help") {
+    std::cout << usage;
+    return 0;
+  }
+  const auto it = commands.find(command);
+  if (it == commands.end()) {
+    std::cerr << tool << ": "
+              << (command.empty() ? "no command given" : "unknown command '" + command + "'")
+              << "\n"
+              << usage;
+    return 2;
+  }
+  try {
+    return it->second(*cl);
+  } catch (const std::exception& e) {
+    std::cerr << tool << ": internal error: " << e.what() << "\n";
+    return 3;
+  }
+}
+
 Expected<std::pair<double, double>> ParseLatLon(const std::string& text) {
   const auto comma = text.find(',');
-  const auto bad = MakeError("usage", "expected LAT,LON in degrees (e.g. 48.1374,11.5755), got '" +
-                                          text + "'");
+  const auto bad =
+      MakeError("usage", "expected LAT,LON in degrees (e.g. 48.1374,11.5755), got '" + text + "'");
   if (comma == std::string::npos) return bad;
   const auto lat = ToDouble(text.substr(0, comma));
   const auto lon = ToDouble(text.substr(comma + 1));
   if (!lat || !lon) return bad;
   if (*lat < -90 || *lat > 90 || *lon < -180 || *lon > 180)
-    return MakeError("usage", "latitude must lie in [-90, 90] and longitude in [-180, 180], got '" +
-                                  text + "'");
+    return MakeError(
+        "usage", "latitude must lie in [-90, 90] and longitude in [-180, 180], got '" + text + "'");
   return std::pair{*lat, *lon};
 }
 

@@ -5,6 +5,7 @@
 //   reenact-capture record --source synthetic:turn-and-kick --out clips/a --frames 60
 //   -> positionals {"record"}, values {"source": ..., "out": ..., "frames": "60"}
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -42,6 +43,18 @@ class CommandLine {
   std::map<std::string, std::string> values_;
   std::set<std::string> switches_;
 };
+
+// The frame of every executable's main: parses argv, answers --help, runs the handler named
+// by the first positional word, and turns failures into one line on stderr:
+//   usage errors (unknown option, unknown command): the line and the usage text, exit 2;
+//   an exception escaping a handler (a bug): "TOOL: internal error: ...", exit 3.
+using CommandHandler = std::function<int(const CommandLine&)>;
+int RunTool(const std::string& tool, const std::string& usage, CommandLineSpec spec,
+            const std::map<std::string, CommandHandler>& commands, int argc,
+            const char* const* argv);
+
+// Prints "TOOL: message" on stderr; returns 2 for code "usage", else 1.
+int ReportFailure(const std::string& tool, const Error& error);
 
 // Parses "LAT,LON" in degrees; an Error unless both are numbers in range.
 Expected<std::pair<double, double>> ParseLatLon(const std::string& text);

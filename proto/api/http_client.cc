@@ -1,5 +1,8 @@
 #include "proto/api/http_client.h"
 
+#include <algorithm>
+#include <cctype>
+
 #include <boost/asio/connect.hpp>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
@@ -17,17 +20,6 @@ namespace asio = boost::asio;
 namespace beast = boost::beast;
 namespace http = beast::http;
 using tcp = asio::ip::tcp;
-
-bool IEquals(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i) {
-    if (std::tolower(static_cast<unsigned char>(a[i])) !=
-        std::tolower(static_cast<unsigned char>(b[i]))) {
-      return false;
-    }
-  }
-  return true;
-}
 
 Error BadUrl(std::string_view url, std::string_view why) {
   return MakeError("invalid_argument", "invalid server URL '" + std::string(url) + "': " +
@@ -148,9 +140,15 @@ void HttpClientOptions::Check() const {
   REENACT_CHECK(max_response_body_bytes > 0, "max_response_body_bytes must be > 0");
 }
 
+bool EqualsIgnoreCase(std::string_view a, std::string_view b) {
+  return std::ranges::equal(a, b, [](unsigned char x, unsigned char y) {
+    return std::tolower(x) == std::tolower(y);
+  });
+}
+
 Expected<BaseUrl> ParseBaseUrl(std::string_view url) {
   constexpr std::string_view kScheme = "http://";
-  if (url.size() < kScheme.size() || !IEquals(url.substr(0, kScheme.size()), kScheme)) {
+  if (url.size() < kScheme.size() || !EqualsIgnoreCase(url.substr(0, kScheme.size()), kScheme)) {
     if (url.find("://") != std::string_view::npos) return BadUrl(url, "only http:// is supported");
     return BadUrl(url, "missing http://");
   }
@@ -201,7 +199,7 @@ Expected<BaseUrl> ParseBaseUrl(std::string_view url) {
 
 std::optional<std::string> HttpResponse::Header(std::string_view name) const {
   for (const auto& [key, value] : headers) {
-    if (IEquals(key, name)) return value;
+    if (EqualsIgnoreCase(key, name)) return value;
   }
   return std::nullopt;
 }

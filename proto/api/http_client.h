@@ -36,6 +36,9 @@ struct BaseUrl {
   std::string text;  // normalised "http://host:port"
 };
 // code "invalid_argument" with a message showing the expected form.
+// ASCII case-insensitive equality (HTTP header names, URL schemes).
+bool EqualsIgnoreCase(std::string_view a, std::string_view b);
+
 Expected<BaseUrl> ParseBaseUrl(std::string_view url);
 
 using HttpHeaders = std::vector<std::pair<std::string, std::string>>;

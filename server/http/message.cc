@@ -3,19 +3,9 @@
 #include <cctype>
 
 #include "proto/api/api_types.h"
+#include "proto/api/http_client.h"
 
 namespace reenact::server {
-
-bool EqualsIgnoreCase(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (size_t i = 0; i < a.size(); ++i) {
-    if (std::tolower(static_cast<unsigned char>(a[i])) !=
-        std::tolower(static_cast<unsigned char>(b[i]))) {
-      return false;
-    }
-  }
-  return true;
-}
 
 std::optional<std::string> Request::Header(std::string_view name) const {
   for (const auto& [key, value] : headers) {

@@ -10,7 +10,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "proto/api/http_client.h"
+
 namespace reenact::server {
+
+using proto::EqualsIgnoreCase;
 
 using HeaderList = std::vector<std::pair<std::string, std::string>>;
 
@@ -36,6 +40,6 @@ Response ErrorResponse(int status, std::string_view code, std::string_view messa
 // A JSON body (invalid UTF-8 in strings is replaced, never thrown on).
 Response JsonResponse(int status, const nlohmann::json& body);
 
-bool EqualsIgnoreCase(std::string_view a, std::string_view b);
+
 
 }  // namespace reenact::server

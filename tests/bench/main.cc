@@ -21,10 +21,7 @@ constexpr const char* kUsage =
     "  reenact-bench core [--repeats R] [--json FILE]\n"
     "  reenact-bench capture|server|viewer ...   (not in this build yet)\n";
 
-int Fail(const Error& e) {
-  std::cerr << "reenact-bench: " << e.message << "\n";
-  return e.code == "usage" ? 2 : 1;
-}
+int Fail(const Error& e) { return ReportFailure("reenact-bench", e); }
 
 double Median(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
@@ -35,16 +32,18 @@ double Median(std::vector<double> v) {
 Skeleton RandomSkeleton(std::mt19937& rng) {
   std::uniform_real_distribution<double> yaw(-M_PI, M_PI), jitter(-0.05, 0.05), dist(2.0, 4.0);
   const Eigen::Vector3d base[kJointCount] = {
-      {0, -0.75, 0}, {0, -0.55, 0}, {0, -0.3, 0},     {0, 0, 0},       {0.2, -0.5, 0},
-      {0.45, -0.3, 0}, {0.6, -0.1, 0}, {-0.2, -0.5, 0}, {-0.45, -0.3, 0}, {-0.6, -0.1, 0},
-      {0.1, 0.05, 0}, {0.11, 0.5, 0},  {0.12, 0.95, 0}, {-0.1, 0.05, 0}, {-0.11, 0.5, 0},
-      {-0.12, 0.95, 0}};
-  const Eigen::Matrix3d r = Eigen::AngleAxisd(yaw(rng), Eigen::Vector3d::UnitY()).toRotationMatrix();
+      {0, -0.75, 0},    {0, -0.55, 0},   {0, -0.3, 0},    {0, 0, 0},
+      {0.2, -0.5, 0},   {0.45, -0.3, 0}, {0.6, -0.1, 0},  {-0.2, -0.5, 0},
+      {-0.45, -0.3, 0}, {-0.6, -0.1, 0}, {0.1, 0.05, 0},  {0.11, 0.5, 0},
+      {0.12, 0.95, 0},  {-0.1, 0.05, 0}, {-0.11, 0.5, 0}, {-0.12, 0.95, 0}};
+  const Eigen::Matrix3d r =
+      Eigen::AngleAxisd(yaw(rng), Eigen::Vector3d::UnitY()).toRotationMatrix();
   const double z = dist(rng);
   Skeleton s;
   for (int i = 0; i < kJointCount; ++i)
     s.Set(static_cast<Joint>(i),
-          r * (base[i] + Eigen::Vector3d(jitter(rng), jitter(rng), jitter(rng))) + Eigen::Vector3d(0, 0, z));
+          r * (base[i] + Eigen::Vector3d(jitter(rng), jitter(rng), jitter(rng))) +
+              Eigen::Vector3d(0, 0, z));
   return s;
 }
 
@@ -84,7 +83,8 @@ int Core(const CommandLine& cl) {
   // Eq. 6-16 mapping for the 11 parts of one output frame.
   {
     std::vector<Skeleton> a, b;
-    for (int i = 0; i < 1000; ++i) a.push_back(RandomSkeleton(rng)), b.push_back(RandomSkeleton(rng));
+    for (int i = 0; i < 1000; ++i)
+      a.push_back(RandomSkeleton(rng)), b.push_back(RandomSkeleton(rng));
     std::vector<double> us;
     double sink = 0;
     for (long long r = 0; r < *repeats; ++r) {
@@ -92,7 +92,8 @@ int Core(const CommandLine& cl) {
       for (size_t i = 0; i < a.size(); ++i)
         for (int p = 0; p < kBodyPartCount; ++p) {
           const auto [ja, jb] = PartJoints(static_cast<BodyPart>(p));
-          if (auto m = StoredFromViewerMapping(a[i][ja], a[i][jb], b[i][ja], b[i][jb])) sink += (*m)(0, 3);
+          if (auto m = StoredFromViewerMapping(a[i][ja], a[i][jb], b[i][ja], b[i][jb]))
+            sink += (*m)(0, 3);
         }
       us.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count() / a.size());
     }
@@ -108,23 +109,18 @@ int Core(const CommandLine& cl) {
   return 0;
 }
 
+int NotYet(const CommandLine& cl) {
+  return Fail(MakeError(
+      "unsupported",
+      "'" + cl.positionals()[0] +
+          "' is not in this build yet: it arrives with the capture, server and viewer work"));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  const CommandLineSpec spec{{"repeats", "json"}, {"help"}};
-  const auto cl = CommandLine::Parse(argc, argv, 1, spec);
-  if (!cl.ok()) {
-    std::cerr << "reenact-bench: " << cl.error().message << "\n" << kUsage;
-    return 2;
-  }
-  const std::string command = cl->positionals().empty() ? "" : cl->positionals()[0];
-  if (cl->Has("help")) {
-    std::cout << kUsage;
-    return 0;
-  }
-  if (command == "core") return Core(*cl);
-  if (command == "capture" || command == "server" || command == "viewer")
-    return Fail(MakeError("unsupported", "'" + command + "' is not in this build yet"));
-  std::cerr << "reenact-bench: unknown command '" << command << "'\n" << kUsage;
-  return 2;
+  const CommandLineSpec spec{{"repeats", "json"}, {}};
+  return RunTool("reenact-bench", kUsage, spec,
+                 {{"core", Core}, {"capture", NotYet}, {"server", NotYet}, {"viewer", NotYet}},
+                 argc, argv);
 }

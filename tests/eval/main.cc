@@ -17,10 +17,7 @@ constexpr const char* kUsage =
     "                       [--json FILE]\n"
     "  reenact-eval slam|reloc|tracker ...   (not in this build yet)\n";
 
-int Fail(const Error& e) {
-  std::cerr << "reenact-eval: " << e.message << "\n";
-  return e.code == "usage" ? 2 : 1;
-}
+int Fail(const Error& e) { return ReportFailure("reenact-eval", e); }
 
 Expected<std::vector<std::string>> SplitList(const std::string& text) {
   std::vector<std::string> out;
@@ -46,7 +43,8 @@ int Quality(const CommandLine& cl) {
     for (const std::string& s : *list) {
       char* end = nullptr;
       const double d = std::strtod(s.c_str(), &end);
-      if (end != s.c_str() + s.size()) return Fail(MakeError("usage", "--views: not a number: " + s));
+      if (end != s.c_str() + s.size())
+        return Fail(MakeError("usage", "--views: not a number: " + s));
       options.views_deg.push_back(d);
     }
   }
@@ -75,29 +73,17 @@ int Quality(const CommandLine& cl) {
   return 0;
 }
 
+int NotYet(const CommandLine& cl) {
+  return Fail(MakeError("unsupported", "'" + cl.positionals()[0] +
+                                           "' is not in this build yet: it arrives with SLAM, "
+                                           "relocalisation and the depth tracker"));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  const CommandLineSpec spec{{"scenario", "methods", "views", "step", "json"}, {"help"}};
-  const auto cl = CommandLine::Parse(argc, argv, 1, spec);
-  if (!cl.ok()) {
-    std::cerr << "reenact-eval: " << cl.error().message << "\n" << kUsage;
-    return 2;
-  }
-  const std::string command = cl->positionals().empty() ? "" : cl->positionals()[0];
-  if (cl->Has("help")) {
-    std::cout << kUsage;
-    return 0;
-  }
-  try {
-    if (command == "quality") return Quality(*cl);
-  } catch (const std::exception& e) {
-    std::cerr << "reenact-eval: internal error: " << e.what() << "\n";
-    return 3;
-  }
-  if (command == "slam" || command == "reloc" || command == "tracker")
-    return Fail(MakeError("unsupported", "'" + command + "' is not in this build yet: it arrives "
-                                         "with SLAM, relocalisation and the depth tracker"));
-  std::cerr << "reenact-eval: unknown command '" << command << "'\n" << kUsage;
-  return 2;
+  const CommandLineSpec spec{{"scenario", "methods", "views", "step", "json"}, {}};
+  return RunTool("reenact-eval", kUsage, spec,
+                 {{"quality", Quality}, {"slam", NotYet}, {"reloc", NotYet}, {"tracker", NotYet}},
+                 argc, argv);
 }
