@@ -18,7 +18,7 @@ constexpr const char* kUsage =
     "  reenact-viewer browse --server URL --near LAT,LON [--radius-m M] [--limit N] [--json]\n"
     "  reenact-viewer play CLIP_ID --server URL [--camera orbit] [--orbit-deg D]\n"
     "                      [--headless --out DIR] [--frames N] [--width W --height H]\n"
-    "                      [--cache DIR] [--bare] [--skeleton] [--no-mp4]\n";
+    "                      [--cache DIR] [--bare] [--skeleton] [--masks] [--no-mp4]\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-viewer", e); }
 

@@ -87,6 +87,9 @@ Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::p
   options.Check();
   const auto start = std::chrono::steady_clock::now();
   const SensorInfo& info = source.info();
+  if (std::error_code ec; std::filesystem::exists(out_dir, ec))
+    return MakeError("already_exists", out_dir.string() +
+                                           " already exists; remove it or choose another --out");
 
   std::vector<std::vector<uint8_t>> encoded;
   std::vector<Skeleton> skeletons_in_sensor;

@@ -162,3 +162,24 @@ TEST(BadInput, LatitudeOutOfRangeIsUsageError) {
 
 }  // namespace
 }  // namespace reenact
+
+namespace reenact {
+namespace {
+
+TEST(BadInput, RecordOntoAnExistingClipIsRefusedAndKeepsIt) {
+  testing::TempDir tmp;
+  const std::string clip = tmp.path() + "/clip";
+  const auto first = testing::RunProcess({kCapture, "record", "--source", "synthetic:turn-and-kick",
+                                          "--out", clip, "--frames", "2"},
+                                         std::chrono::seconds(120));
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  const auto second = testing::RunProcess({kCapture, "record", "--source", "synthetic:turn-and-kick",
+                                           "--out", clip, "--frames", "3"},
+                                          kQuick);
+  ExpectOneLineError(second, "already exists");
+  const auto info = testing::RunProcess({kCapture, "info", clip}, kQuick);
+  EXPECT_NE(info.out.find("frames      2"), std::string::npos) << info.out;
+}
+
+}  // namespace
+}  // namespace reenact

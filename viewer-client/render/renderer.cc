@@ -460,6 +460,11 @@ void Renderer::BlitToDefaultFramebuffer(int framebuffer_width, int framebuffer_h
   glBlitFramebuffer(0, 0, impl_->width, impl_->height, x0, y0, x0 + w, y0 + h,
                     GL_COLOR_BUFFER_BIT, GL_LINEAR);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  // The offscreen alpha holds the subject mask; a window must be opaque on compositing
+  // desktops, so its alpha is set to 1 everywhere.
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_TRUE);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
 int Renderer::width() const { return impl_->width; }

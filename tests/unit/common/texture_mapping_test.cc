@@ -1,6 +1,8 @@
 #include "common/texture/texture_mapping.h"
 
 #include <cmath>
+#include <ostream>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -24,8 +26,11 @@ Eigen::Vector3d Apply(const Eigen::Matrix4d& m, const Eigen::Vector3d& p) {
 }
 
 struct CylinderPair {
+  const char* name;
   Eigen::Vector3d a_viewer, b_viewer, a_stored, b_stored;
 };
+
+void PrintTo(const CylinderPair& c, std::ostream* os) { *os << c.name; }
 
 class MappingOnSyntheticCylinders : public ::testing::TestWithParam<CylinderPair> {};
 
@@ -48,13 +53,14 @@ INSTANTIATE_TEST_SUITE_P(
     Poses, MappingOnSyntheticCylinders,
     ::testing::Values(
         // Same cylinder: identity.
-        CylinderPair{{0.1, -0.2, 2.5}, {0.1, 0.3, 2.5}, {0.1, -0.2, 2.5}, {0.1, 0.3, 2.5}},
+        CylinderPair{"same", {0.1, -0.2, 2.5}, {0.1, 0.3, 2.5}, {0.1, -0.2, 2.5}, {0.1, 0.3, 2.5}},
         // Stored arm longer, rotated and moved.
-        CylinderPair{{0.2, -0.1, 2.0}, {0.5, 0.0, 2.1}, {-0.3, 0.2, 3.0}, {-0.3, 0.6, 3.3}},
+        CylinderPair{"moved", {0.2, -0.1, 2.0}, {0.5, 0.0, 2.1}, {-0.3, 0.2, 3.0}, {-0.3, 0.6, 3.3}},
         // Anti-parallel axes (the cross product of Eq. 8 vanishes, angle pi).
-        CylinderPair{{0, -0.3, 2.0}, {0, 0.3, 2.0}, {0.2, 0.25, 2.4}, {0.2, -0.35, 2.4}},
+        CylinderPair{"antiparallel", {0, -0.3, 2.0}, {0, 0.3, 2.0}, {0.2, 0.25, 2.4}, {0.2, -0.35, 2.4}},
         // Parallel axes, different facing (stored seen from the side).
-        CylinderPair{{0, 0, 2.0}, {0, 0.4, 2.0}, {1.5, 0, 0.5}, {1.5, 0.4, 0.5}}));
+        CylinderPair{"parallel_side_view", {0, 0, 2.0}, {0, 0.4, 2.0}, {1.5, 0, 0.5}, {1.5, 0.4, 0.5}}),
+    [](const ::testing::TestParamInfo<CylinderPair>& info) { return std::string(info.param.name); });
 
 TEST(FacingDirection, PointsTowardsCameraAndIsOrthogonalToAxis) {
   const auto f = FacingDirection({0.5, -0.5, 2}, {0.5, 0.5, 2});
