@@ -17,10 +17,10 @@ namespace {
 using testing::RunProcess;
 using testing::TempDir;
 
-const std::string kBin = REENACT_BINARY_DIR;
-const std::string kServer = kBin + "/server/reenact-server";
-const std::string kCapture = kBin + "/capture-client/reenact-capture";
-const std::string kViewer = kBin + "/viewer-client/reenact-viewer";
+using testing::kBin;
+using testing::kCapture;
+using testing::kServer;
+using testing::kViewer;
 constexpr auto kQuick = std::chrono::seconds(30);
 
 // One line of error text (a trailing newline allowed).

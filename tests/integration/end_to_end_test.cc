@@ -19,10 +19,9 @@ using testing::BackgroundProcess;
 using testing::RunProcess;
 using testing::TempDir;
 
-const std::string kBin = REENACT_BINARY_DIR;
-const std::string kServer = kBin + "/server/reenact-server";
-const std::string kCapture = kBin + "/capture-client/reenact-capture";
-const std::string kViewer = kBin + "/viewer-client/reenact-viewer";
+using testing::kCapture;
+using testing::kServer;
+using testing::kViewer;
 
 std::string Field(const std::string& text, const std::string& pattern) {
   std::smatch m;

@@ -10,6 +10,12 @@
 
 namespace reenact::testing {
 
+// The programs under test, in the build tree.
+inline const std::string kBin = REENACT_BINARY_DIR;
+inline const std::string kServer = kBin + "/server/reenact-server";
+inline const std::string kCapture = kBin + "/capture-client/reenact-capture";
+inline const std::string kViewer = kBin + "/viewer-client/reenact-viewer";
+
 struct ProcessResult {
   int exit_code = -1;     // -1 if killed at the deadline or by a signal
   bool timed_out = false;
