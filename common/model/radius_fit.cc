@@ -73,7 +73,7 @@ RadiusFitResult FitRadiusRatios(const Skeleton& skeleton, const PinholeCamera& c
 
   for (int y = 0; y < mask.height; ++y) {
     for (int x = 0; x < mask.width; ++x) {
-      if (mask.at(x, y) < 128 || depth.at(x, y) == 0) continue;
+      if (mask.at(x, y) < 128) continue;
       const Eigen::Vector2d px(x, y);
       int best = -1;
       double best_dist = std::numeric_limits<double>::max(), best_t = 0;
@@ -91,7 +91,7 @@ RadiusFitResult FitRadiusRatios(const Skeleton& skeleton, const PinholeCamera& c
       }
       if (best < 0) continue;
       ++result.pixel_count[best];
-      part_depths[best].push_back(depth.at(x, y) * options.depth_scale_m);
+      if (depth.at(x, y) != 0) part_depths[best].push_back(depth.at(x, y) * options.depth_scale_m);
       if (best_t < 0.1 || best_t > 0.9) continue;
       const int s = std::min(slices - 1, static_cast<int>((best_t - 0.1) / 0.8 * slices));
       ++slice_count[best][s];
@@ -106,7 +106,7 @@ RadiusFitResult FitRadiusRatios(const Skeleton& skeleton, const PinholeCamera& c
     for (int s = 0; s < slices; ++s)
       if (slice_count[p][s] >= options.min_pixels_per_slice)
         widths.push_back(slice_count[p][s] / slice_length_px);
-    if (static_cast<int>(widths.size()) < options.min_slices) continue;
+    if (static_cast<int>(widths.size()) < options.min_slices || part_depths[p].empty()) continue;
     // Focal length across the axis: the normal's components weigh fx and fy.
     const double f = std::hypot(ax.normal.x() * camera.fx, ax.normal.y() * camera.fy);
     // The silhouette's half width is r f / (z + r) for a cylinder whose nearest surface lies

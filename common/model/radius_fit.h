@@ -2,14 +2,17 @@
 // Radius ratios from the representative frame (thesis Sec. 3.3.3): fit a rectangle to each
 // body part's region of the person mask and take its width.
 //
-// Each subject pixel with a depth reading goes to the part whose projected axis segment is
-// nearest in the image (pixels beyond either end of every segment are left out). Along each
-// part's axis, between 10% and 90% of its length, the pixels are cut into slices; a slice's
-// width in pixels is the spread (max - min) of the pixels' signed distances from the projected
-// axis. The rectangle width w (pixels) is the median slice width. A cylinder of radius r whose
-// nearest surface lies at depth z (the median depth of the part's pixels) shows a silhouette
+// Each subject pixel goes to the part whose projected axis segment is nearest in the image
+// (pixels beyond either end of every segment are left out). Along each part's axis, between
+// 10% and 90% of its length, the pixels are cut into slices; a slice's rectangle has the
+// slice's length along the projected axis and the width that gives it the slice's pixel
+// count (area / length: unbiased whatever the axis's direction in the image). The part's
+// rectangle width w (pixels) is the median slice width. A cylinder of radius r whose nearest
+// surface lies at depth z (the median depth reading of the part's pixels) shows a silhouette
 // of width w = 2 r f / (z + r), f the focal length across the projected axis, so
 // r = w z / (2 f - w). The rectangle's half width is the radius: radius_ratio = r / ||s_a - s_b||.
+// Depth holes (0) inside the mask still count towards the silhouette's area; a part without
+// any depth reading keeps its default ratio.
 
 #include <array>
 

@@ -97,3 +97,38 @@ TEST(CylinderModel, ZeroLengthBoneAndMissingJointAreNotPosed) {
 
 }  // namespace
 }  // namespace reenact
+
+namespace reenact {
+namespace {
+
+TEST(CylinderModel, SubMillimetreBonesArePosedAndEveryJointMissingPosesNothing) {
+  Skeleton s = testing::StandingPerson(2.5, 0, true);
+  s.Set(Joint::kLeftHand, s[Joint::kLeftElbow] + Eigen::Vector3d(0.0005, 0, 0));  // 0.5 mm
+  const auto cylinders = PoseCylinders(s, DefaultRadiusRatios());
+  ASSERT_TRUE(cylinders[Index(BodyPart::kLeftForearm)]);
+  EXPECT_NEAR(cylinders[Index(BodyPart::kLeftForearm)]->Length(), 0.0005, 1e-12);
+  EXPECT_TRUE(std::isfinite(cylinders[Index(BodyPart::kLeftForearm)]->radius));
+  for (const auto& c : PoseCylinders(Skeleton{}, DefaultRadiusRatios())) EXPECT_FALSE(c);
+}
+
+TEST(RadiusFit, DepthHolesInsideTheMaskAreIgnored) {
+  const PinholeCamera cam = PinholeCamera::KinectLike();
+  const Skeleton s = testing::StandingPerson(2.5, 0.0, true);
+  const RadiusRatios truth = DefaultRadiusRatios();
+  ImageDepthMm depth;
+  ImageGray8 mask;
+  RayCastCylinders(PoseCylinders(s, truth), cam, depth, mask);
+  // Every third row of depth readings lost, as at a Kinect's dark or shiny patches.
+  for (int y = 0; y < depth.height; y += 3)
+    for (int x = 0; x < depth.width; ++x) depth.at(x, y) = 0;
+  const RadiusFitResult fit = FitRadiusRatios(s, cam, depth, mask);
+  // The silhouette is whole, so the fit of the free limbs keeps the 10% of the hole-free case.
+  for (BodyPart p : {BodyPart::kLeftUpperArm, BodyPart::kLeftForearm, BodyPart::kRightUpperArm,
+                     BodyPart::kRightForearm, BodyPart::kLeftShin, BodyPart::kRightShin}) {
+    ASSERT_TRUE(fit.fitted[Index(p)]) << PartName(p);
+    EXPECT_NEAR(fit.radius_ratio[Index(p)], truth[Index(p)], 0.1 * truth[Index(p)]) << PartName(p);
+  }
+}
+
+}  // namespace
+}  // namespace reenact

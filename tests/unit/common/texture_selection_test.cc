@@ -68,3 +68,33 @@ TEST(TextureSelection, MissingJointCostsTheStatedPenalty) {
 
 }  // namespace
 }  // namespace reenact
+
+namespace reenact {
+namespace {
+
+TEST(TextureSelection, OneFrameIsAlwaysChosen) {
+  const std::vector<Skeleton> stored = {testing::StandingPerson(3.0, 2.0, false)};
+  const auto ranked = RankTextureFrames(testing::StandingPerson(3.0, 0.0, true), stored, {.top_k = 5});
+  ASSERT_EQ(ranked.size(), 1u);
+  EXPECT_EQ(ranked[0].frame, 0);
+  EXPECT_GT(ranked[0].cost, 0.0);
+}
+
+TEST(TextureSelection, EveryJointMissingGivesNoCandidate) {
+  const Skeleton empty;
+  const std::vector<Skeleton> stored = {empty, testing::StandingPerson(3.0, 0.0, true)};
+  EXPECT_TRUE(RankTextureFrames(empty, stored).empty());
+  const auto ranked = RankTextureFrames(testing::StandingPerson(3.0, 0.0, true), stored);
+  ASSERT_EQ(ranked.size(), 1u);
+  EXPECT_EQ(ranked[0].frame, 1);
+}
+
+TEST(TextureSelection, AllFramesUnusableGivesNoCandidate) {
+  const std::vector<Skeleton> stored = {testing::StandingPerson(3.0, 0.0, true),
+                                        testing::StandingPerson(3.0, 1.0, true)};
+  const bool usable[] = {false, false};
+  EXPECT_TRUE(RankTextureFrames(stored[0], stored, {}, usable).empty());
+}
+
+}  // namespace
+}  // namespace reenact
