@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iostream>
 
 #include <nlohmann/json.hpp>
 
@@ -68,6 +69,11 @@ Status Report::WriteJson(const std::string& path) const {
   out << ToJson() << "\n";
   if (!out) return MakeError("io", "cannot write " + path);
   return {};
+}
+
+Status Report::Print(const std::optional<std::string>& json_path) const {
+  std::cout << FormatTable() << std::flush;
+  return json_path ? WriteJson(*json_path) : Status{};
 }
 
 }  // namespace reenact::proto

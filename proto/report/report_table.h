@@ -3,6 +3,7 @@
 // and, with --json FILE, {"command": "...", "rows": [ {...}, ... ]} with one flat object per
 // row, labels and figures under the names DESIGN.md fixes (psnr_db, iou, ms_per_frame, ...).
 
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -30,6 +31,8 @@ struct Report {
   std::string FormatTable(int precision = 3) const;
   std::string ToJson() const;
   Status WriteJson(const std::string& path) const;
+  // What every command does at its end: the table on stdout, the JSON file if a path is given.
+  Status Print(const std::optional<std::string>& json_path) const;
 };
 
 }  // namespace reenact::proto

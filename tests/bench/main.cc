@@ -1,6 +1,5 @@
 // reenact-bench: speed, reported as medians over repetitions, with ratios against a baseline
 // measured in the same run.
-#include <iostream>
 
 #include "common/cli/command_line.h"
 #include "proto/report/report_table.h"
@@ -29,10 +28,8 @@ int Core(const CommandLine& cl) {
   bench::AddMappingRows(report, options);
   bench::AddRenderRows(report, options);
   bench::AddModelRows(report, options);
-  std::cout << report.FormatTable();
-  if (auto json = cl.Get("json"))
-    if (Status s = report.WriteJson(*json); !s.ok()) return Fail(s.error());
-  return 0;
+  const Status printed = report.Print(cl.Get("json"));
+  return printed.ok() ? 0 : Fail(printed.error());
 }
 
 int NotYet(const CommandLine& cl) {

@@ -1,6 +1,5 @@
 // reenact-eval: accuracy against ground truth. `quality` today; slam, reloc and tracker
 // arrive with their components.
-#include <iostream>
 #include <sstream>
 
 #include "common/cli/command_line.h"
@@ -67,10 +66,8 @@ int Quality(const CommandLine& cl) {
                               .Add("iou", r.iou)
                               .Add("colour_mae", r.colour_mae)
                               .Add("ms_per_frame", r.ms_per_frame));
-  std::cout << report.FormatTable();
-  if (auto json = cl.Get("json"))
-    if (Status s = report.WriteJson(*json); !s.ok()) return Fail(s.error());
-  return 0;
+  const Status printed = report.Print(cl.Get("json"));
+  return printed.ok() ? 0 : Fail(printed.error());
 }
 
 int NotYet(const CommandLine& cl) {
