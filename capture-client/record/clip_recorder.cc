@@ -5,8 +5,7 @@
 #include <ctime>
 #include <memory>
 
-#include "common/model/radius_fit.h"
-#include "common/model/representative_frame.h"
+#include "common/model/model_building.h"
 #include "proto/clip/clip_directory.h"
 #include "proto/clip/manifest.h"
 #include "proto/clip/map_codec.h"
@@ -80,6 +79,7 @@ void RecordOptions::Check() const {
   REENACT_CHECK(keyframe_interval >= 1, "keyframe_interval must be >= 1");
   codec.Check();
   map.Check();
+  model.Check();
 }
 
 Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::path& out_dir,
@@ -143,23 +143,25 @@ Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::p
   // std::vector<bool> has no contiguous storage to view as a span.
   const auto usable = std::make_unique<bool[]>(has_subject.size());
   std::copy(has_subject.begin(), has_subject.end(), usable.get());
-  const std::optional<int> rep = SelectRepresentativeFrame(
-      skeletons_in_sensor, std::span<const bool>(usable.get(), has_subject.size()));
-  if (rep) {
-    auto frame = proto::DecodeFrame(encoded[*rep]);
-    if (!frame.ok()) return frame.error();
-    const PinholeCamera crop_camera = info.color_camera.Cropped(
-        frame->crop_x, frame->crop_y, frame->color.width, frame->color.height);
-    RadiusFitOptions fit_options;
-    fit_options.depth_scale_m = info.depth_scale_m;
-    const RadiusFitResult fit = FitRadiusRatios(skeletons_in_sensor[*rep], crop_camera,
-                                                frame->depth, frame->mask, fit_options);
-    for (int p = 0; p < kBodyPartCount; ++p)
-      manifest.radius_ratio[p] = std::clamp(fit.radius_ratio[p], 0.02, 2.0);
-    manifest.representative_frame = *rep;
-    summary.representative_frame = *rep;
-    summary.fitted_parts = fit.fitted_count();
+  ModelBuildOptions model_options = options.model;
+  model_options.fit.depth_scale_m = info.depth_scale_m;
+  const ModelBuildResult model = BuildCylinderModel(
+      skeletons_in_sensor,
+      [&](int n) -> std::optional<ModelFrameImages> {
+        auto frame = proto::DecodeFrame(encoded[n]);
+        if (!frame.ok()) return std::nullopt;
+        return ModelFrameImages{info.color_camera.Cropped(frame->crop_x, frame->crop_y,
+                                                          frame->color.width, frame->color.height),
+                                std::move(frame->depth), std::move(frame->mask)};
+      },
+      model_options, std::span<const bool>(usable.get(), has_subject.size()));
+  for (int p = 0; p < kBodyPartCount; ++p)
+    manifest.radius_ratio[p] = std::clamp(model.radius_ratio[p], 0.02, 2.0);
+  if (model.representative_frame) {
+    manifest.representative_frame = *model.representative_frame;
+    summary.representative_frame = *model.representative_frame;
   }
+  summary.fitted_parts = model.fitted_count();
 
   proto::ClipMap map = std::move(map_builder).Finish();
   auto map_bytes = proto::EncodeMap(map, proto::MapCodecOptions{});

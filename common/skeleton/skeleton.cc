@@ -86,4 +86,14 @@ Skeleton Skeleton::Transformed(const Eigen::Isometry3d& b_from_a) const {
   return out;
 }
 
+std::optional<Skeleton> NeckRelative(const Skeleton& skeleton) {
+  if (!skeleton.Has(Joint::kNeck)) return std::nullopt;
+  Skeleton out = skeleton;
+  const Eigen::Vector3d neck = skeleton[Joint::kNeck];
+  for (int i = 0; i < kJointCount; ++i)
+    out.position[i] = out.confidence[i] > 0 ? Eigen::Vector3d(skeleton.position[i] - neck)
+                                            : Eigen::Vector3d::Zero();
+  return out;
+}
+
 }  // namespace reenact

@@ -85,4 +85,9 @@ struct Skeleton {
   Skeleton Transformed(const Eigen::Isometry3d& b_from_a) const;
 };
 
+// The neck-relative form used by texture selection (thesis Eq. 5): every present joint i at
+// s_i - s_neck, so the neck lands at the origin; missing joints stay missing (at the origin),
+// confidences unchanged. nullopt if the neck is missing.
+std::optional<Skeleton> NeckRelative(const Skeleton& skeleton);
+
 }  // namespace reenact

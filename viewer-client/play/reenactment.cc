@@ -4,7 +4,6 @@
 
 #include "common/error/check.h"
 #include "common/texture/texture_mapping.h"
-#include "common/texture/texture_selection.h"
 
 namespace reenact::viewer {
 namespace {
@@ -30,6 +29,8 @@ Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFr
     skeletons_in_sensor_.push_back(f.skeleton_in_world.Transformed(f.world_from_sensor.inverse()));
     usable_[n] = std::any_of(f.mask.data.begin(), f.mask.data.end(), [](uint8_t v) { return v > 127; });
   }
+  texture_index_ =
+      TextureIndex(skeletons_in_sensor_, std::span<const bool>(usable_.get(), frames_.size()));
 }
 
 Eigen::Vector3d Reenactment::SubjectCentre() const {
@@ -58,8 +59,7 @@ ReenactedFrame Reenactment::Build(int k, const PinholeCamera& viewer_camera,
   out.draw.camera = viewer_camera;
   const Skeleton viewer_skeleton = frames_[k].skeleton_in_world.Transformed(viewer_from_world);
 
-  const auto ranked = RankTextureFrames(viewer_skeleton, skeletons_in_sensor_, {},
-                                        std::span<const bool>(usable_.get(), frames_.size()));
+  const auto ranked = texture_index_.Rank(viewer_skeleton);
   const int n_bar = ranked.empty() ? -1 : ranked.front().frame;
   out.texture_frame = n_bar;
   const int texture = n_bar < 0 ? -1 : texture_for_frame(n_bar);

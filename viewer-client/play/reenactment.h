@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "common/model/cylinder_model.h"
+#include "common/texture/texture_index.h"
 #include "proto/clip/frame_codec.h"
 #include "proto/clip/manifest.h"
 #include "viewer-client/render/renderer.h"
@@ -49,6 +50,7 @@ class Reenactment {
   std::vector<proto::ClipFrame> frames_;
   std::vector<Skeleton> skeletons_in_sensor_;  // S_n = M_n S'_n
   std::unique_ptr<bool[]> usable_;             // frames with a visible subject
+  TextureIndex texture_index_;                 // Eq. 5 over usable S_n, exact as the scan
 };
 
 }  // namespace reenact::viewer

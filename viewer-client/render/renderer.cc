@@ -14,7 +14,6 @@
 namespace reenact::viewer {
 namespace {
 
-constexpr int kCylinderSegments = 32;
 constexpr float kJointPointSize = 5.0f;
 
 struct UploadedTexture {
@@ -30,23 +29,6 @@ std::array<float, 16> ToFloat(const Eigen::Matrix4d& m) {
   return out;
 }
 
-// Maps the unit cylinder (cylinder_mesh.h) onto axis a -> b with the given radius.
-Eigen::Matrix4d ViewerFromCylinder(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                   double radius) {
-  const Eigen::Vector3d axis = b - a;
-  const double length = axis.norm();
-  const Eigen::Vector3d z = axis / length;
-  const Eigen::Vector3d helper =
-      std::abs(z.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  const Eigen::Vector3d x = z.cross(helper).normalized();
-  const Eigen::Vector3d y = z.cross(x);
-  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
-  m.block<3, 1>(0, 0) = x * radius;
-  m.block<3, 1>(0, 1) = y * radius;
-  m.block<3, 1>(0, 2) = axis;
-  m.block<3, 1>(0, 3) = a;
-  return m;
-}
 
 }  // namespace
 
@@ -113,7 +95,7 @@ Status Renderer::Impl::Initialize(int w, int h) {
     *p.program = std::move(program).value();
   }
 
-  const CylinderMesh mesh = MakeUnitCylinderMesh(kCylinderSegments);
+  const CylinderMesh mesh = MakeUnitCylinderMesh(kDefaultCylinderSegments);
   std::vector<float> interleaved;
   interleaved.reserve(mesh.positions.size() * 6);
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
@@ -265,7 +247,7 @@ void Renderer::Impl::DrawCylinders(const FrameDraw& frame,
   glBindVertexArray(cylinder_vao.id());
   for (const CylinderDraw& c : frame.cylinders) {
     if ((c.b - c.a).norm() < 1e-12) continue;
-    const std::array<float, 16> model = ToFloat(ViewerFromCylinder(c.a, c.b, c.radius));
+    const std::array<float, 16> model = ToFloat(ViewerFromUnitCylinder(c.a, c.b, c.radius));
     glUniformMatrix4fv(model_location, 1, GL_FALSE, model.data());
     glUniform3f(color_location, c.color.x(), c.color.y(), c.color.z());
     const bool textured = frame.textured && c.texture >= 0;
