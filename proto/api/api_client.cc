@@ -1,11 +1,28 @@
 #include "proto/api/api_client.h"
 
+#include <algorithm>
 #include <cctype>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <thread>
 
 namespace reenact::proto {
 
 namespace {
+
+// The wait a 429 asks for (Retry-After in seconds), within [0.1 s, 10 s]; 1 s if absent.
+std::chrono::milliseconds RetryAfter(const HttpResponse& response) {
+  double seconds = 1.0;
+  if (auto header = response.Header("Retry-After")) {
+    char* end = nullptr;
+    const double parsed = std::strtod(header->c_str(), &end);
+    if (end != header->c_str() && std::isfinite(parsed)) seconds = parsed;
+  }
+  return std::chrono::milliseconds(
+      static_cast<int64_t>(1000 * std::clamp(seconds, 0.1, 10.0)));
+}
 
 // Percent-encodes a query value (RFC 3986 unreserved characters pass through).
 std::string EncodeQueryValue(std::string_view value) {
@@ -43,6 +60,11 @@ ApiClient::ApiClient(std::string base_url, std::string token, HttpClientOptions 
 Expected<HttpResponse> ApiClient::Call(HttpRequest request, int expected_status) const {
   if (!token_.empty()) request.headers.emplace_back("Authorization", "Bearer " + token_);
   auto response = http_.Send(request);
+  for (int retry = 0; response && response->status == 429 && retry < kMaxRateLimitRetries;
+       ++retry) {
+    std::this_thread::sleep_for(RetryAfter(*response));
+    response = http_.Send(request);
+  }
   if (!response) return response.error();
   if (response->status == expected_status) return response;
   if (auto error = ParseErrorBody(response->body)) return *error;

@@ -16,6 +16,10 @@ namespace reenact::proto {
 
 class ApiClient {
  public:
+  // A request answered 429 (rate limited) is sent again after the server's Retry-After
+  // (clamped to [0.1 s, 10 s]) up to this many times before its error is returned.
+  static constexpr int kMaxRateLimitRetries = 10;
+
   // base_url "http://HOST:PORT"; token may be empty for read-only use.
   ApiClient(std::string base_url, std::string token, HttpClientOptions options = {});
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <iostream>
 #include <map>
 #include <string>
@@ -17,7 +18,11 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: reenact-server serve --db FILE [--listen HOST:PORT] [--threads N]\n"
-    "       reenact-server user add NAME --db FILE\n";
+    "                            [--max-connections N] [--rate-limit PER_S] [--rate-burst N]\n"
+    "                            [--header-timeout-s S]\n"
+    "       reenact-server user add NAME --db FILE\n"
+    "       reenact-server token add NAME --db FILE\n"
+    "       reenact-server token revoke NAME --db FILE\n";
 
 struct Args {
   std::vector<std::string> positional;
@@ -52,6 +57,23 @@ int Usage(std::ostream& err, const std::string& problem) {
   return 2;
 }
 
+// The flag's value as a number in [lo, hi]; false with a usage problem otherwise.
+bool NumberFlag(const Args& args, const std::string& flag, double lo, double hi, double& value,
+                std::string& problem) {
+  auto it = args.flags.find(flag);
+  if (it == args.flags.end()) return true;
+  const std::string& t = it->second;
+  double parsed = 0;
+  auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), parsed);
+  if (ec != std::errc() || end != t.data() + t.size() || !(parsed >= lo && parsed <= hi)) {
+    problem = flag + " wants a number in [" + std::to_string(static_cast<long long>(lo)) + ", " +
+              std::to_string(static_cast<long long>(hi)) + "], got '" + t + "'";
+    return false;
+  }
+  value = parsed;
+  return true;
+}
+
 int Serve(const Args& args, std::ostream& out, std::ostream& err) {
   if (!args.positional.empty()) return Usage(err, "unexpected argument " + args.positional[0]);
   auto db = args.flags.find("--db");
@@ -67,11 +89,22 @@ int Serve(const Args& args, std::ostream& out, std::ostream& err) {
     const std::string& t = threads->second;
     int n = 0;
     auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), n);
-    if (ec != std::errc() || end != t.data() + t.size() || n < 1 || n > 256) {
-      return Usage(err, "--threads wants an integer in [1, 256]");
+    if (ec != std::errc() || end != t.data() + t.size() || n < 0 || n > 256) {
+      return Usage(err, "--threads wants an integer in [0, 256] (0 = one per hardware thread)");
     }
     options.threads = n;
   }
+  double max_connections = options.max_connections;
+  double header_timeout_s = std::chrono::duration<double>(options.idle_timeout).count();
+  std::string problem;
+  if (!NumberFlag(args, "--max-connections", 1, 1'000'000, max_connections, problem) ||
+      !NumberFlag(args, "--rate-limit", 0, 1e9, options.rate_limit.per_second, problem) ||
+      !NumberFlag(args, "--rate-burst", 1, 1e9, options.rate_limit.burst, problem) ||
+      !NumberFlag(args, "--header-timeout-s", 0.01, 3600, header_timeout_s, problem)) {
+    return Usage(err, problem);
+  }
+  options.max_connections = static_cast<int>(max_connections);
+  options.idle_timeout = std::chrono::milliseconds(static_cast<int64_t>(header_timeout_s * 1000));
   auto storage = OpenSqliteStorage(db->second);
   if (!storage) {
     err << "reenact-server: " << storage.error().message << std::endl;
@@ -83,12 +116,11 @@ int Serve(const Args& args, std::ostream& out, std::ostream& err) {
   auto port = server.Listen();
   if (!port) {
     err << "reenact-server: " << port.error().message << std::endl;
-    return port.error().code == "address_in_use" || port.error().code == "invalid_argument" ? 2
-                                                                                             : 1;
+    return port.error().code == "address_in_use" || port.error().code == "invalid_argument" ? 2 : 1;
   }
   const bool ipv6 = options.host.find(':') != std::string::npos;
-  out << "listening on http://" << (ipv6 ? "[" + options.host + "]" : options.host) << ":"
-      << *port << std::endl;
+  out << "listening on http://" << (ipv6 ? "[" + options.host + "]" : options.host) << ":" << *port
+      << std::endl;
   server.Run(/*stop_on_signals=*/true);
   err << "reenact-server: stopped" << std::endl;
   return 0;
@@ -114,6 +146,36 @@ int UserAdd(const Args& args, std::ostream& out, std::ostream& err) {
   return 0;
 }
 
+// token add|revoke NAME --db FILE
+int Token(const std::string& action, const Args& args, std::ostream& out, std::ostream& err) {
+  if (args.positional.size() != 1) return Usage(err, "token " + action + " needs exactly one NAME");
+  auto db = args.flags.find("--db");
+  if (db == args.flags.end()) return Usage(err, "token " + action + " needs --db FILE");
+  auto storage = OpenSqliteStorage(db->second);
+  if (!storage) {
+    err << "reenact-server: " << storage.error().message << std::endl;
+    return 1;
+  }
+  const std::string& name = args.positional[0];
+  if (action == "add") {
+    auto token = AddTokenForUser(*storage->metadata, name);
+    if (!token) {
+      err << "reenact-server: " << token.error().message << std::endl;
+      return token.error().code == "not_found" ? 2 : 1;
+    }
+    out << *token << std::endl;
+    err << "reenact-server: new token for '" << name << "'; it is shown only once" << std::endl;
+    return 0;
+  }
+  auto revoked = storage->metadata->RevokeUserTokens(name);
+  if (!revoked) {
+    err << "reenact-server: " << revoked.error().message << std::endl;
+    return revoked.error().code == "not_found" ? 2 : 1;
+  }
+  out << "revoked " << *revoked << " token(s) of '" << name << "'" << std::endl;
+  return 0;
+}
+
 }  // namespace
 
 int RunServerCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
@@ -127,8 +189,10 @@ int RunServerCli(int argc, const char* const* argv, std::ostream& out, std::ostr
   Args args;
   std::string problem;
   if (words[0] == "serve") {
-    if (!ParseArgs({words.begin() + 1, words.end()}, {"--db", "--listen", "--threads"}, args,
-                   problem)) {
+    if (!ParseArgs({words.begin() + 1, words.end()},
+                   {"--db", "--listen", "--threads", "--max-connections", "--rate-limit",
+                    "--rate-burst", "--header-timeout-s"},
+                   args, problem)) {
       return Usage(err, problem);
     }
     return Serve(args, out, err);
@@ -138,6 +202,12 @@ int RunServerCli(int argc, const char* const* argv, std::ostream& out, std::ostr
       return Usage(err, problem);
     }
     return UserAdd(args, out, err);
+  }
+  if (words[0] == "token" && words.size() >= 2 && (words[1] == "add" || words[1] == "revoke")) {
+    if (!ParseArgs({words.begin() + 2, words.end()}, {"--db"}, args, problem)) {
+      return Usage(err, problem);
+    }
+    return Token(words[1], args, out, err);
   }
   return Usage(err, "unknown command '" + words[0] + "'");
 }

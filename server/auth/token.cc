@@ -82,4 +82,12 @@ Expected<std::string> AddUserWithToken(MetadataStore& store, const std::string& 
   return *token;
 }
 
+Expected<std::string> AddTokenForUser(MetadataStore& store, const std::string& name) {
+  auto token = GenerateToken();
+  if (!token) return token.error();
+  auto user = store.AddToken(name, HashToken(*token));
+  if (!user) return user.error();
+  return *token;
+}
+
 }  // namespace reenact::server

@@ -34,4 +34,8 @@ Expected<std::optional<UserRecord>> Authenticate(MetadataStore& store, std::stri
 // "conflict" when the name is taken.
 Expected<std::string> AddUserWithToken(MetadataStore& store, const std::string& name);
 
+// Issues another token for an existing user (e.g. after revoking a leaked one); returns it.
+// code "not_found" when there is no such user.
+Expected<std::string> AddTokenForUser(MetadataStore& store, const std::string& name);
+
 }  // namespace reenact::server

@@ -16,9 +16,7 @@ Response Unauthorized(std::string_view message) {
   return response;
 }
 
-std::string NotFoundMessage(const std::string& id) {
-  return "no clip '" + id.substr(0, 64) + "'";
-}
+std::string NotFoundMessage(const std::string& id) { return "no clip '" + id.substr(0, 64) + "'"; }
 
 }  // namespace
 
@@ -36,7 +34,10 @@ std::variant<std::optional<UserRecord>, Response> OptionalUser(const Request& re
   if (!token) return Unauthorized("Authorization must be 'Bearer <token>'");
   auto user = Authenticate(context.metadata, *token);
   if (!user) return StorageFailure(user.error());
-  if (!*user) return Unauthorized("unknown token; ask the operator for one (reenact-server user add)");
+  if (!*user) {
+    return Unauthorized(
+        "unknown token (or a revoked one); ask the operator for one (reenact-server token add)");
+  }
   return *user;
 }
 
@@ -80,9 +81,9 @@ std::variant<int, Response> PartIndex(const RouteMatch& match) {
   int value = -1;
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (text.empty() || ec != std::errc() || end != text.data() + text.size() || value < 0) {
-    return ErrorResponse(400, "bad_request",
-                         "frame number must be a non-negative integer, got '" +
-                             text.substr(0, 32) + "'");
+    return ErrorResponse(
+        400, "bad_request",
+        "frame number must be a non-negative integer, got '" + text.substr(0, 32) + "'");
   }
   return value;
 }

@@ -41,6 +41,9 @@ Response ListNearby(const Request& request, ServiceContext& context, const Route
 Response GetManifest(const Request& request, ServiceContext& context, const RouteMatch& match);
 Response GetPart(const Request& request, ServiceContext& context, const RouteMatch& match);
 Response MyClips(const Request& request, ServiceContext& context);
+// DELETE /v1/me/token: revokes the token the request carries (a leaked token's owner stops
+// it at once; a new one comes from the operator's `reenact-server token add`).
+Response RevokeOwnToken(const Request& request, ServiceContext& context);
 Response Health(ServiceContext& context);
 Response MetricsText(ServiceContext& context);
 

@@ -1,5 +1,7 @@
 #include "server/http/http_server.h"
 
+#include <algorithm>
+#include <atomic>
 #include <boost/asio/dispatch.hpp>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
@@ -8,16 +10,16 @@
 #include <boost/asio/strand.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
-
-#include <atomic>
-#include <limits>
 #include <charconv>
+#include <cmath>
 #include <csignal>
+#include <limits>
 #include <mutex>
 #include <optional>
 #include <thread>
 #include <vector>
 
+#include "server/auth/token.h"
 #include "server/http/routes.h"
 
 namespace reenact::server {
@@ -32,8 +34,13 @@ class Session;
 class HttpServer::Impl : public std::enable_shared_from_this<HttpServer::Impl> {
  public:
   Impl(ServiceContext& context_in, ServerOptions options_in)
-      : context(context_in), options(std::move(options_in)), control(asio::make_strand(ioc)),
-        acceptor(control), signals(control), drain_timer(control) {}
+      : context(context_in),
+        options(std::move(options_in)),
+        limiter(options.rate_limit),
+        control(asio::make_strand(ioc)),
+        acceptor(control),
+        signals(control),
+        drain_timer(control) {}
 
   Expected<uint16_t> Listen();
   void Run(bool stop_on_signals);
@@ -42,7 +49,10 @@ class HttpServer::Impl : public std::enable_shared_from_this<HttpServer::Impl> {
   ServiceContext& context;
   const ServerOptions options;
   std::atomic<bool> stopping{false};
+  RateLimiter limiter;
   std::shared_ptr<std::atomic<int>> live = std::make_shared<std::atomic<int>>(0);
+  // Sessions being served (refused ones not counted), against max_connections.
+  std::shared_ptr<std::atomic<int>> served = std::make_shared<std::atomic<int>>(0);
 
  private:
   void DoAccept();
@@ -61,13 +71,32 @@ class HttpServer::Impl : public std::enable_shared_from_this<HttpServer::Impl> {
 // One connection: read header, check the body limit, read body, handle, write, repeat.
 class Session : public std::enable_shared_from_this<Session> {
  public:
-  Session(tcp::socket&& socket, HttpServer::Impl& server)
-      : stream_(std::move(socket)), server_(server), live_(server.live) {
+  // refuse: answer 503 at once and close (the server is at max_connections).
+  Session(tcp::socket&& socket, HttpServer::Impl& server, bool refuse)
+      : stream_(std::move(socket)),
+        server_(server),
+        live_(server.live),
+        served_(refuse ? nullptr : server.served) {
     ++*live_;
+    if (served_) ++*served_;
   }
-  ~Session() { --*live_; }
+  ~Session() {
+    if (served_) --*served_;
+    --*live_;
+  }
 
   void Start() {
+    if (!served_) {
+      asio::dispatch(stream_.get_executor(), [self = shared_from_this()] {
+        self->route_ = "refused";
+        self->started_ = std::chrono::steady_clock::now();
+        self->drain_after_reply_ = true;
+        self->Reply(ErrorResponse(503, "unavailable",
+                                  "the server is at its connection limit; retry shortly"),
+                    false);
+      });
+      return;
+    }
     asio::dispatch(stream_.get_executor(),
                    beast::bind_front_handler(&Session::ReadHeader, shared_from_this()));
   }
@@ -102,6 +131,12 @@ class Session : public std::enable_shared_from_this<Session> {
     const std::string target(header.target());
     route_ = RouteLabel(method, target);
     body_limit_ = BodyLimit(method, target, server_.context.limits);
+    refusal_.reset();
+    const auto authorization = header[http::field::authorization];
+    if (auto token = ParseBearer(std::string_view(authorization.data(), authorization.size()))) {
+      const RateDecision decision = server_.limiter.Acquire(HashToken(*token));
+      if (!decision.allowed) refusal_ = TooManyRequests(decision.retry_after_s);
+    }
     if (auto length = parser_->content_length(); length && *length > body_limit_) {
       drain_after_reply_ = true;
       return Reply(TooLarge(body_limit_), /*keep_alive=*/false);
@@ -141,13 +176,23 @@ class Session : public std::enable_shared_from_this<Session> {
     }
     request.body = std::move(message.body());
     bytes_in_ = request.body.size();
+    if (refusal_) return Reply(std::move(*refusal_), message.keep_alive());
     Reply(Handle(request, server_.context), message.keep_alive());
   }
 
   static Response TooLarge(size_t limit) {
-    return ErrorResponse(413, "too_large",
-                         "request body exceeds this route's limit of " + std::to_string(limit) +
-                             " bytes");
+    return ErrorResponse(
+        413, "too_large",
+        "request body exceeds this route's limit of " + std::to_string(limit) + " bytes");
+  }
+
+  static Response TooManyRequests(double retry_after_s) {
+    const long long seconds = std::max(1LL, static_cast<long long>(std::ceil(retry_after_s)));
+    Response response = ErrorResponse(
+        429, "rate_limited",
+        "too many requests with this token; retry in " + std::to_string(seconds) + " s");
+    response.headers.emplace_back("Retry-After", std::to_string(seconds));
+    return response;
   }
 
   void Reply(Response response, bool keep_alive) {
@@ -174,6 +219,9 @@ class Session : public std::enable_shared_from_this<Session> {
     server_.context.metrics.Record(route_, status_, seconds, bytes_in_, response_->body().size());
     const bool close = response_->need_eof();
     response_.reset();
+    if (!served_) {
+      max_drain_bytes_ = 64 * 1024;  // a refused connection gets little patience
+    }
     if (!ec && drain_after_reply_) return Drain();
     if (ec || close) return Close();
     ReadHeader();
@@ -183,12 +231,11 @@ class Session : public std::enable_shared_from_this<Session> {
   // sends (up to kMaxDrainBytes, under a short deadline) so that it gets to read our answer
   // instead of a connection reset.
   void Drain() {
-    static constexpr size_t kMaxDrainBytes = size_t{256} << 20;
     if (drained_ == 0) {
       beast::error_code ignored;
       stream_.socket().shutdown(tcp::socket::shutdown_send, ignored);
     }
-    if (drained_ > kMaxDrainBytes) return Close();
+    if (drained_ > max_drain_bytes_) return Close();
     stream_.expires_after(std::chrono::seconds(5));
     drain_buffer_.resize(64 * 1024);
     stream_.async_read_some(asio::buffer(drain_buffer_),
@@ -209,6 +256,7 @@ class Session : public std::enable_shared_from_this<Session> {
   beast::tcp_stream stream_;
   HttpServer::Impl& server_;
   std::shared_ptr<std::atomic<int>> live_;
+  std::shared_ptr<std::atomic<int>> served_;  // null for a refused connection
   beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::string_body>> parser_;
   std::shared_ptr<http::response<http::string_body>> response_;
@@ -218,6 +266,8 @@ class Session : public std::enable_shared_from_this<Session> {
   size_t bytes_in_ = 0;
   size_t body_limit_ = 0;
   bool drain_after_reply_ = false;
+  std::optional<Response> refusal_;  // 429 decided at the header, sent after the body
+  size_t max_drain_bytes_ = size_t{256} << 20;
   size_t drained_ = 0;
   std::vector<char> drain_buffer_;
   std::chrono::steady_clock::time_point started_;
@@ -260,7 +310,8 @@ void HttpServer::Impl::Run(bool stop_on_signals) {
     self->DoAccept();
   });
   std::vector<std::thread> threads;
-  for (int i = 1; i < options.threads; ++i) threads.emplace_back([this] { ioc.run(); });
+  const int thread_count = options.ResolvedThreads();
+  for (int i = 1; i < thread_count; ++i) threads.emplace_back([this] { ioc.run(); });
   ioc.run();
   for (auto& thread : threads) thread.join();
 }
@@ -298,7 +349,8 @@ void HttpServer::Impl::DoAccept() {
 void HttpServer::Impl::OnAccept(beast::error_code ec, tcp::socket socket) {
   if (stopping || ec == asio::error::operation_aborted) return;
   if (!ec) {
-    auto session = std::make_shared<Session>(std::move(socket), *this);
+    const bool refuse = *served >= options.max_connections;
+    auto session = std::make_shared<Session>(std::move(socket), *this, refuse);
     std::erase_if(sessions, [](const std::weak_ptr<Session>& s) { return s.expired(); });
     sessions.push_back(session);
     session->Start();
@@ -308,15 +360,24 @@ void HttpServer::Impl::OnAccept(beast::error_code ec, tcp::socket socket) {
 
 void ServerOptions::Check() const {
   REENACT_CHECK(!host.empty(), "host must not be empty");
-  REENACT_CHECK(threads >= 1, "threads must be >= 1");
+  REENACT_CHECK(threads >= 0, "threads must be >= 0");
+  REENACT_CHECK(max_connections >= 1, "max_connections must be >= 1");
+  rate_limit.Check();
   REENACT_CHECK(idle_timeout.count() > 0, "idle_timeout must be > 0");
   REENACT_CHECK(transfer_timeout.count() > 0, "transfer_timeout must be > 0");
   REENACT_CHECK(drain_timeout.count() > 0, "drain_timeout must be > 0");
 }
 
+int ServerOptions::ResolvedThreads() const {
+  if (threads > 0) return threads;
+  return std::max(2, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
 Expected<std::pair<std::string, uint16_t>> ParseListenAddress(const std::string& text) {
-  const Error bad = MakeError("invalid_argument", "--listen wants HOST:PORT (e.g. 127.0.0.1:8080, "
-                                                  "port 0 = any free port), got '" + text + "'");
+  const Error bad = MakeError("invalid_argument",
+                              "--listen wants HOST:PORT (e.g. 127.0.0.1:8080, "
+                              "port 0 = any free port), got '" +
+                                  text + "'");
   const size_t colon = text.rfind(':');
   if (colon == std::string::npos || colon == 0 || colon + 1 == text.size()) return bad;
   std::string host = text.substr(0, colon);

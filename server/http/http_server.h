@@ -4,6 +4,10 @@
 // every request. Bodies are limited per route (BodyLimit) before they are read; every read
 // and write has a deadline. Stop() is graceful: no new connections, idle connections close,
 // requests in flight finish and are answered, then Run() returns.
+// Beyond max_connections, a new connection is answered 503 "unavailable" and closed. Requests
+// carrying a bearer token spend that token's rate-limit credit (rate_limiter.h); without
+// credit they are answered 429 "rate_limited" with Retry-After. Connections are kept alive
+// between requests unless the client asks otherwise.
 
 #include <chrono>
 #include <cstdint>
@@ -11,6 +15,7 @@
 #include <string>
 
 #include "common/error/expected.h"
+#include "server/http/rate_limiter.h"
 #include "server/http/service_context.h"
 
 namespace reenact::server {
@@ -20,8 +25,13 @@ struct ServerOptions {
   std::string host = "127.0.0.1";
   // TCP port; 0 = let the system pick a free one (Listen() returns it). Default 8080.
   uint16_t port = 8080;
-  // Threads running the I/O loop; >= 1. Default 2.
-  int threads = 2;
+  // Threads running the I/O loop and the handlers; >= 0, 0 = one per hardware thread (at
+  // least 2, since handlers block on the database). Default 0.
+  int threads = 0;
+  // Connections served at once; >= 1. More are answered 503 and closed. Default 1024.
+  int max_connections = 1024;
+  // Per-token request rate limit; per_second 0 turns it off. Default 200/s, burst 400.
+  RateLimitOptions rate_limit;
   // How long a connection may sit without a complete request header; > 0. Default 30 s.
   std::chrono::milliseconds idle_timeout{30'000};
   // Deadline to receive a request's body and to send its response; > 0. Default 120 s.
@@ -31,6 +41,8 @@ struct ServerOptions {
   std::chrono::milliseconds drain_timeout{30'000};
 
   void Check() const;
+  // threads with 0 resolved to the machine's hardware threads.
+  int ResolvedThreads() const;
 };
 
 // "HOST:PORT" or "[V6]:PORT" into host and port; code "invalid_argument" otherwise.

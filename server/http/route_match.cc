@@ -69,6 +69,8 @@ RouteMatch MatchRoute(std::string_view target) {
     set(RouteId::kMetrics, "/metrics", {"GET"});
   } else if (p.size() == 3 && p[0] == "v1" && p[1] == "me" && p[2] == "clips") {
     set(RouteId::kMyClips, "/v1/me/clips", {"GET"});
+  } else if (p.size() == 3 && p[0] == "v1" && p[1] == "me" && p[2] == "token") {
+    set(RouteId::kMyToken, "/v1/me/token", {"DELETE"});
   } else if (p.size() >= 2 && p[0] == "v1" && p[1] == "clips") {
     if (p.size() >= 3) {
       auto id = PercentDecode(p[2]);

@@ -18,6 +18,7 @@ enum class RouteId {
   kMap,           // /v1/clips/{id}/map
   kPublish,       // /v1/clips/{id}/publish
   kMyClips,       // /v1/me/clips
+  kMyToken,       // /v1/me/token
 };
 
 struct RouteMatch {

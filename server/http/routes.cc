@@ -16,6 +16,7 @@ Response Dispatch(const Request& request, ServiceContext& context, const RouteMa
     case RouteId::kHealth: return handlers::Health(context);
     case RouteId::kMetrics: return handlers::MetricsText(context);
     case RouteId::kMyClips: return handlers::MyClips(request, context);
+    case RouteId::kMyToken: return handlers::RevokeOwnToken(request, context);
     case RouteId::kClips:
       return m == "POST" ? handlers::CreateClip(request, context)
                          : handlers::ListNearby(request, context, match);

@@ -100,6 +100,13 @@ class MetadataStore {
   // The user owning a token hash, or nullopt.
   virtual Expected<std::optional<TokenOwner>> FindUserByTokenHash(
       const std::string& token_sha256) = 0;
+  // Adds another token to an existing user; code "not_found" when there is no such user.
+  virtual Expected<UserRecord> AddToken(const std::string& user_name,
+                                        const std::string& token_sha256) = 0;
+  // Revokes one token (it stops authenticating at once); false when it was unknown.
+  virtual Expected<bool> RevokeToken(const std::string& token_sha256) = 0;
+  // Revokes every token of a user; returns how many; code "not_found" for no such user.
+  virtual Expected<int> RevokeUserTokens(const std::string& user_name) = 0;
 
   // Creates a draft; code "conflict" when the id exists.
   virtual Status CreateClip(const NewClip& clip) = 0;

@@ -45,6 +45,16 @@ Expected<std::optional<int64_t>> ClipKey(sqlite::Database& db, const std::string
   return std::optional<int64_t>(stmt->ColumnInt(0));
 }
 
+Expected<std::optional<UserRecord>> UserByName(sqlite::Database& db, const std::string& name) {
+  auto stmt = db.Prepare("SELECT id, name FROM users WHERE name = ?1");
+  if (!stmt) return stmt.error();
+  stmt->BindText(1, name);
+  auto row = stmt->Step();
+  if (!row) return row.error();
+  if (!*row) return std::optional<UserRecord>();
+  return std::optional<UserRecord>(UserRecord{stmt->ColumnInt(0), stmt->ColumnText(1)});
+}
+
 bool IsConstraintError(const Error& error) {
   return error.message.find("UNIQUE constraint failed") != std::string::npos;
 }
@@ -97,6 +107,48 @@ Expected<std::optional<TokenOwner>> SqliteMetadataStore::FindUserByTokenHash(
       TokenOwner{UserRecord{stmt->ColumnInt(0), stmt->ColumnText(1)}, stmt->ColumnText(2)});
 }
 
+Expected<UserRecord> SqliteMetadataStore::AddToken(const std::string& user_name,
+                                                   const std::string& token_sha256) {
+  std::lock_guard lock(mutex_);
+  auto tx = sqlite::Transaction::Begin(db_);
+  if (!tx) return tx.error();
+  auto user = UserByName(db_, user_name);
+  if (!user) return user.error();
+  if (!*user) return MakeError("not_found", "no user named '" + user_name + "'");
+  auto insert =
+      db_.Prepare("INSERT INTO tokens(user_id, token_sha256, created_at) VALUES (?1, ?2, ?3)");
+  if (!insert) return insert.error();
+  insert->Bind(1, (*user)->id).BindText(2, token_sha256).Bind(3, NowUnix());
+  if (Status s = insert->Run(); !s) return s.error();
+  if (Status s = tx->Commit(); !s) return s.error();
+  return **user;
+}
+
+Expected<bool> SqliteMetadataStore::RevokeToken(const std::string& token_sha256) {
+  std::lock_guard lock(mutex_);
+  auto stmt = db_.Prepare("DELETE FROM tokens WHERE token_sha256 = ?1");
+  if (!stmt) return stmt.error();
+  stmt->BindText(1, token_sha256);
+  if (Status s = stmt->Run(); !s) return s.error();
+  return db_.Changes() > 0;
+}
+
+Expected<int> SqliteMetadataStore::RevokeUserTokens(const std::string& user_name) {
+  std::lock_guard lock(mutex_);
+  auto tx = sqlite::Transaction::Begin(db_);
+  if (!tx) return tx.error();
+  auto user = UserByName(db_, user_name);
+  if (!user) return user.error();
+  if (!*user) return MakeError("not_found", "no user named '" + user_name + "'");
+  auto stmt = db_.Prepare("DELETE FROM tokens WHERE user_id = ?1");
+  if (!stmt) return stmt.error();
+  stmt->Bind(1, (*user)->id);
+  if (Status s = stmt->Run(); !s) return s.error();
+  const int revoked = db_.Changes();
+  if (Status s = tx->Commit(); !s) return s.error();
+  return revoked;
+}
+
 Status SqliteMetadataStore::CreateClip(const NewClip& clip) {
   std::lock_guard lock(mutex_);
   auto tx = sqlite::Transaction::Begin(db_);
@@ -142,8 +194,8 @@ Status SqliteMetadataStore::CreateClip(const NewClip& clip) {
 
 Expected<std::optional<ClipRecord>> SqliteMetadataStore::GetClip(const std::string& id) {
   std::lock_guard lock(mutex_);
-  auto stmt = db_.Prepare(std::string("SELECT ") + kClipColumns +
-                          " FROM clips c WHERE c.public_id = ?1");
+  auto stmt =
+      db_.Prepare(std::string("SELECT ") + kClipColumns + " FROM clips c WHERE c.public_id = ?1");
   if (!stmt) return stmt.error();
   stmt->BindText(1, id);
   auto row = stmt->Step();
@@ -163,8 +215,7 @@ Expected<std::string> SqliteMetadataStore::GetManifest(const std::string& id) {
   return stmt->ColumnBlob(0);
 }
 
-Expected<std::optional<PartRecord>> SqliteMetadataStore::GetPart(const std::string& id,
-                                                                 int index) {
+Expected<std::optional<PartRecord>> SqliteMetadataStore::GetPart(const std::string& id, int index) {
   std::lock_guard lock(mutex_);
   auto stmt = db_.Prepare(
       "SELECT p.bytes, p.sha256, p.present FROM clip_parts p JOIN clips c "
@@ -252,8 +303,10 @@ Expected<std::vector<NearbyHit>> SqliteMetadataStore::Nearby(const NearbyQuery& 
   REENACT_CHECK(query.radius_m >= 0.0 && query.radius_m <= kMaxNearbyRadiusM,
                 "nearby radius out of range");
   std::lock_guard lock(mutex_);
+  // CROSS JOIN pins the R*Tree as the outer loop: otherwise SQLite may walk every published
+  // clip through clips_by_state and probe the tree per row (linear in the clip count).
   auto stmt = db_.Prepare(std::string("SELECT ") + kClipColumns +
-                          " FROM clip_boxes b JOIN clips c ON c.rowid_key = b.id "
+                          " FROM clip_boxes b CROSS JOIN clips c ON c.rowid_key = b.id "
                           "WHERE b.max_lat >= ?1 AND b.min_lat <= ?2 AND b.max_lon >= ?3 "
                           "AND b.min_lon <= ?4 AND c.state = 'published'");
   if (!stmt) return stmt.error();
@@ -261,7 +314,9 @@ Expected<std::vector<NearbyHit>> SqliteMetadataStore::Nearby(const NearbyQuery& 
   std::set<std::string> seen;
   for (const LatLonBox& box : BoundingBoxes(query.lat_deg, query.lon_deg, query.radius_m)) {
     stmt->Reset();
-    stmt->Bind(1, box.min_lat_deg).Bind(2, box.max_lat_deg).Bind(3, box.min_lon_deg)
+    stmt->Bind(1, box.min_lat_deg)
+        .Bind(2, box.max_lat_deg)
+        .Bind(3, box.min_lon_deg)
         .Bind(4, box.max_lon_deg);
     for (;;) {
       auto row = stmt->Step();
@@ -271,8 +326,8 @@ Expected<std::vector<NearbyHit>> SqliteMetadataStore::Nearby(const NearbyQuery& 
       if (!seen.insert(clip.id).second) continue;
       const double d = HaversineDistanceM(query.lat_deg, query.lon_deg, clip.lat_deg, clip.lon_deg);
       if (d > query.radius_m) continue;
-      if (query.after && std::tie(d, clip.id) <=
-                             std::tie(query.after->distance_m, query.after->id)) {
+      if (query.after &&
+          std::tie(d, clip.id) <= std::tie(query.after->distance_m, query.after->id)) {
         continue;
       }
       hits.push_back(NearbyHit{std::move(clip), d});

@@ -20,6 +20,10 @@ class SqliteMetadataStore : public MetadataStore {
   Expected<UserRecord> AddUser(const std::string& name, const std::string& token_sha256) override;
   Expected<std::optional<TokenOwner>> FindUserByTokenHash(
       const std::string& token_sha256) override;
+  Expected<UserRecord> AddToken(const std::string& user_name,
+                                const std::string& token_sha256) override;
+  Expected<bool> RevokeToken(const std::string& token_sha256) override;
+  Expected<int> RevokeUserTokens(const std::string& user_name) override;
   Status CreateClip(const NewClip& clip) override;
   Expected<std::optional<ClipRecord>> GetClip(const std::string& id) override;
   Expected<std::string> GetManifest(const std::string& id) override;
