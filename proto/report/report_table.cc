@@ -24,28 +24,40 @@ std::string Format(const ReportValue& v, int precision) {
 }  // namespace
 
 std::string Report::FormatTable(int precision) const {
-  std::vector<std::string> columns;
+  std::vector<std::string> tables;
   for (const ReportRow& r : rows)
-    for (const auto& [name, _] : r.cells)
-      if (std::find(columns.begin(), columns.end(), name) == columns.end()) columns.push_back(name);
-  std::vector<std::vector<std::string>> text(rows.size(), std::vector<std::string>(columns.size()));
-  std::vector<size_t> width(columns.size());
-  for (size_t c = 0; c < columns.size(); ++c) width[c] = columns[c].size();
-  for (size_t r = 0; r < rows.size(); ++r)
-    for (const auto& [name, value] : rows[r].cells) {
-      const size_t c = std::find(columns.begin(), columns.end(), name) - columns.begin();
-      text[r][c] = Format(value, precision);
-      width[c] = std::max(width[c], text[r][c].size());
-    }
+    if (std::find(tables.begin(), tables.end(), r.table) == tables.end()) tables.push_back(r.table);
   std::string out;
-  auto line = [&](const std::vector<std::string>& cells) {
-    for (size_t c = 0; c < cells.size(); ++c) {
-      out += cells[c] + std::string(width[c] - cells[c].size(), ' ');
-      out += c + 1 < cells.size() ? "  " : "\n";
+  for (const std::string& table : tables) {
+    std::vector<std::string> columns;
+    std::vector<const ReportRow*> members;
+    for (const ReportRow& r : rows) {
+      if (r.table != table) continue;
+      members.push_back(&r);
+      for (const auto& [name, _] : r.cells)
+        if (std::find(columns.begin(), columns.end(), name) == columns.end())
+          columns.push_back(name);
     }
-  };
-  line(columns);
-  for (const auto& t : text) line(t);
+    std::vector<std::vector<std::string>> text(members.size(),
+                                               std::vector<std::string>(columns.size()));
+    std::vector<size_t> width(columns.size());
+    for (size_t c = 0; c < columns.size(); ++c) width[c] = columns[c].size();
+    for (size_t r = 0; r < members.size(); ++r)
+      for (const auto& [name, value] : members[r]->cells) {
+        const size_t c = std::find(columns.begin(), columns.end(), name) - columns.begin();
+        text[r][c] = Format(value, precision);
+        width[c] = std::max(width[c], text[r][c].size());
+      }
+    if (!out.empty()) out += "\n";
+    auto line = [&](const std::vector<std::string>& cells) {
+      for (size_t c = 0; c < cells.size(); ++c) {
+        out += cells[c];
+        out += c + 1 < cells.size() ? std::string(width[c] - cells[c].size() + 2, ' ') : "\n";
+      }
+    };
+    line(columns);
+    for (const auto& t : text) line(t);
+  }
   return out;
 }
 

@@ -15,6 +15,7 @@ namespace reenact::proto {
 using ReportValue = std::variant<std::string, double, long long>;
 
 struct ReportRow {
+  std::string table;  // rows of one table share its columns; "" = the report's main table
   std::vector<std::pair<std::string, ReportValue>> cells;  // column name -> value, in order
 
   ReportRow& Add(std::string name, ReportValue value) {
@@ -27,7 +28,8 @@ struct Report {
   std::string command;  // e.g. "quality"
   std::vector<ReportRow> rows;
 
-  // Columns in first-seen order; doubles with `precision` decimals; missing cells blank.
+  // One table per ReportRow::table, in first-seen order, each with the union of its rows'
+  // columns (missing cells blank); doubles with `precision` decimals.
   std::string FormatTable(int precision = 3) const;
   std::string ToJson() const;
   Status WriteJson(const std::string& path) const;

@@ -24,10 +24,17 @@ int Core(const CommandLine& cl) {
   if (*repeats < 1) return Fail(MakeError("usage", "--repeats must be >= 1"));
   const bench::CoreBenchOptions options{static_cast<int>(*repeats), cl.Has("quick")};
   proto::Report report{"core", {}};
-  bench::AddSelectionRows(report, options);
-  bench::AddMappingRows(report, options);
-  bench::AddRenderRows(report, options);
-  bench::AddModelRows(report, options);
+  // Each group of rows prints as its own table.
+  const std::pair<const char*, void (*)(proto::Report&, const bench::CoreBenchOptions&)>
+      groups[] = {{"selection", bench::AddSelectionRows},
+                  {"mapping", bench::AddMappingRows},
+                  {"render", bench::AddRenderRows},
+                  {"model", bench::AddModelRows}};
+  for (const auto& [table, add] : groups) {
+    const size_t first = report.rows.size();
+    add(report, options);
+    for (size_t r = first; r < report.rows.size(); ++r) report.rows[r].table = table;
+  }
   const Status printed = report.Print(cl.Get("json"));
   return printed.ok() ? 0 : Fail(printed.error());
 }
