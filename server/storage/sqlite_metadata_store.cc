@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <ctime>
 #include <set>
+#include <thread>
 #include <tuple>
 
 #include "server/geo/geodesic.h"
@@ -65,7 +66,15 @@ Expected<std::unique_ptr<SqliteMetadataStore>> SqliteMetadataStore::Open(const s
   auto db = sqlite::Database::Open(path);
   if (!db) return db.error();
   if (Status s = ApplyMigrations(*db, EmbeddedMigrations()); !s) return s.error();
-  return std::unique_ptr<SqliteMetadataStore>(new SqliteMetadataStore(std::move(*db)));
+  std::unique_ptr<SqliteMetadataStore> store(new SqliteMetadataStore(std::move(*db)));
+  const unsigned readers = std::max(2u, std::thread::hardware_concurrency());
+  for (unsigned i = 0; i < readers; ++i) {
+    auto reader = sqlite::Database::Open(path);
+    if (!reader) return reader.error();
+    if (Status s = reader->Exec("PRAGMA query_only = ON"); !s) return s.error();
+    store->readers_.push_back(std::make_unique<Reader>(std::move(*reader)));
+  }
+  return store;
 }
 
 Expected<UserRecord> SqliteMetadataStore::AddUser(const std::string& name,
@@ -302,10 +311,23 @@ Expected<std::vector<NearbyHit>> SqliteMetadataStore::Nearby(const NearbyQuery& 
   REENACT_CHECK(query.limit >= 1, "nearby limit must be >= 1");
   REENACT_CHECK(query.radius_m >= 0.0 && query.radius_m <= kMaxNearbyRadiusM,
                 "nearby radius out of range");
-  std::lock_guard lock(mutex_);
+  // A free reader if there is one, else wait for the next in turn.
+  const unsigned first = next_reader_.fetch_add(1, std::memory_order_relaxed);
+  std::unique_lock<std::mutex> lock;
+  sqlite::Database* db = nullptr;
+  for (size_t i = 0; i < readers_.size() && !db; ++i) {
+    Reader& r = *readers_[(first + i) % readers_.size()];
+    lock = std::unique_lock(r.mutex, std::try_to_lock);
+    if (lock.owns_lock()) db = &r.db;
+  }
+  if (!db) {
+    Reader& r = *readers_[first % readers_.size()];
+    lock = std::unique_lock(r.mutex);
+    db = &r.db;
+  }
   // CROSS JOIN pins the R*Tree as the outer loop: otherwise SQLite may walk every published
   // clip through clips_by_state and probe the tree per row (linear in the clip count).
-  auto stmt = db_.Prepare(std::string("SELECT ") + kClipColumns +
+  auto stmt = db->Prepare(std::string("SELECT ") + kClipColumns +
                           " FROM clip_boxes b CROSS JOIN clips c ON c.rowid_key = b.id "
                           "WHERE b.max_lat >= ?1 AND b.min_lat <= ?2 AND b.max_lon >= ?3 "
                           "AND b.min_lon <= ?4 AND c.state = 'published'");

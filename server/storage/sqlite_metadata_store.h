@@ -1,11 +1,15 @@
 #pragma once
 // MetadataStore on SQLite (schema: migrations/*.sql). Nearby search pre-filters with the
 // clip_boxes R*Tree over the query's covering boxes (server/geo/geodesic.h), then filters and
-// sorts by exact haversine distance. One connection guarded by a mutex.
+// sorts by exact haversine distance. Writes and most reads go through one connection guarded
+// by a mutex; nearby searches, the hot read path, run on a pool of read-only connections
+// (WAL lets them read committed data concurrently), one per hardware thread.
 
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "server/storage/metadata_store.h"
 #include "server/storage/sqlite.h"
@@ -36,10 +40,18 @@ class SqliteMetadataStore : public MetadataStore {
   Expected<int64_t> CountClips(ClipState state) override;
 
  private:
+  struct Reader {
+    explicit Reader(sqlite::Database database) : db(std::move(database)) {}
+    std::mutex mutex;
+    sqlite::Database db;
+  };
+
   explicit SqliteMetadataStore(sqlite::Database db) : db_(std::move(db)) {}
 
   std::mutex mutex_;
   sqlite::Database db_;
+  std::vector<std::unique_ptr<Reader>> readers_;  // empty: reads use db_
+  std::atomic<unsigned> next_reader_{0};
 };
 
 }  // namespace reenact::server
