@@ -115,8 +115,8 @@ TEST(ServerFault, KillDuringPublishesLeavesEachClipPublishedWholeOrAResumableDra
   constexpr int kClips = 40;
   std::vector<SyntheticClip> clips;
   for (int i = 0; i < kClips; ++i) {
-    clips.push_back(
-        MakeSyntheticClip(10.0 + 0.001 * i, 20.0, 2, 4096, 100 + i, "p" + std::to_string(i)));
+    const std::string title = std::string("p").append(std::to_string(i));  // GCC 12 -Wrestrict
+    clips.push_back(MakeSyntheticClip(10.0 + 0.001 * i, 20.0, 2, 4096, 100 + i, title));
   }
   std::vector<std::string> ids;
   std::vector<int> acknowledged;

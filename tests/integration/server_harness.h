@@ -171,6 +171,7 @@ inline double ReferenceDistanceM(double lat1, double lon1, double lat2, double l
 
 #include "proto/clip/content_hash.h"
 #include "proto/clip/manifest.h"
+#include "tests/unit/server/server_test_util.h"
 
 namespace reenact::testing {
 
@@ -193,24 +194,11 @@ inline SyntheticClip MakeSyntheticClip(double lat, double lon, int frames, size_
   SyntheticClip clip;
   clip.lat = lat;
   clip.lon = lon;
-  proto::ClipManifest m;
-  m.title = title;
-  m.author = "load";
-  m.capture_time = "2024-05-01T12:00:00Z";
-  m.location = {lat, lon, 10.0, 3.0, std::nullopt};
-  m.color_camera = {640, 480, 525.0, 525.0, 319.5, 239.5, {}};
-  m.depth_camera = {640, 480, 525.0, 525.0, 319.5, 239.5, {}};
-  for (int i = 0; i < kBodyPartCount; ++i) m.radius_ratio[i] = 0.2;
-  m.frame_count = frames;
-  m.representative_frame = 0;
-  m.frame_rate_hz = 10;
-  for (int i = 0; i < frames; ++i) {
+  for (int i = 0; i < frames; ++i)
     clip.frames.push_back(bytes(frame_bytes + static_cast<size_t>(i)));
-    m.frame_parts.push_back({clip.frames.back().size(), proto::Sha256Hex(clip.frames.back())});
-  }
   clip.map = bytes(frame_bytes / 2 + 7);
-  m.map_part = {clip.map.size(), proto::Sha256Hex(clip.map)};
-  clip.manifest_json = proto::SerializeManifest(m);
+  clip.manifest_json =
+      server::testing::TestManifestJson(lat, lon, title, "load", clip.frames, clip.map);
   return clip;
 }
 

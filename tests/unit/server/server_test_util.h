@@ -2,12 +2,12 @@
 // Shared helpers of the server tests: a temporary directory, valid clips built through
 // proto's manifest writer, and a service over real SQLite storage with two users.
 
+#include <gtest/gtest.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "proto/clip/content_hash.h"
 #include "proto/clip/manifest.h"
@@ -20,7 +20,8 @@ namespace reenact::server::testing {
 class TempDir {
  public:
   TempDir() {
-    std::string pattern = (std::filesystem::temp_directory_path() / "reenact-server-XXXXXX").string();
+    std::string pattern =
+        (std::filesystem::temp_directory_path() / "reenact-server-XXXXXX").string();
     REENACT_CHECK(mkdtemp(pattern.data()) != nullptr, "mkdtemp failed");
     path_ = pattern;
   }
@@ -40,28 +41,41 @@ struct TestClip {
   std::string map;
 };
 
-// A clip at (lat, lon) with `frames` frames whose payloads are distinct, known byte strings.
-inline TestClip MakeTestClip(double lat, double lon, int frames = 3,
-                             const std::string& title = "clip") {
-  TestClip clip;
+// A valid manifest at (lat, lon) whose parts are exactly `frames` and `map`.
+inline std::string TestManifestJson(double lat, double lon, const std::string& title,
+                                    const std::string& author,
+                                    const std::vector<std::string>& frames,
+                                    const std::string& map) {
   proto::ClipManifest m;
   m.title = title;
-  m.author = "tester";
+  m.author = author;
   m.capture_time = "2024-05-01T12:00:00Z";
   m.location = {lat, lon, 10.0, 3.0, std::nullopt};
   m.color_camera = {640, 480, 525.0, 525.0, 319.5, 239.5, {}};
   m.depth_camera = {640, 480, 525.0, 525.0, 319.5, 239.5, {}};
   for (int i = 0; i < kBodyPartCount; ++i) m.radius_ratio[i] = 0.2;
-  m.frame_count = frames;
+  m.frame_count = static_cast<int64_t>(frames.size());
   m.representative_frame = 0;
   m.frame_rate_hz = 10;
+  for (const std::string& f : frames) m.frame_parts.push_back({f.size(), proto::Sha256Hex(f)});
+  m.map_part = {map.size(), proto::Sha256Hex(map)};
+  return proto::SerializeManifest(m);
+}
+
+// A clip at (lat, lon) with `frames` frames whose payloads are distinct, known byte strings.
+inline TestClip MakeTestClip(double lat, double lon, int frames = 3,
+                             const std::string& title = "clip") {
+  TestClip clip;
   for (int i = 0; i < frames; ++i) {
-    clip.frames.push_back("frame-" + std::to_string(i) + "-" + title + std::string(10 + i, 'x'));
-    m.frame_parts.push_back({clip.frames.back().size(), proto::Sha256Hex(clip.frames.back())});
+    std::string frame = "frame-";  // built step by step: GCC 12 misreports a one-line concat
+    frame += std::to_string(i);
+    frame += "-";
+    frame += title;
+    frame.append(10 + i, 'x');
+    clip.frames.push_back(std::move(frame));
   }
   clip.map = "map-of-" + title + std::string(100, 'm');
-  m.map_part = {clip.map.size(), proto::Sha256Hex(clip.map)};
-  clip.manifest_json = proto::SerializeManifest(m);
+  clip.manifest_json = TestManifestJson(lat, lon, title, "tester", clip.frames, clip.map);
   return clip;
 }
 
@@ -81,9 +95,8 @@ class ServiceFixture : public ::testing::Test {
     bob_ = *b;
   }
 
-  Response Call(const std::string& method, const std::string& target,
-                const std::string& token = "", const std::string& body = "",
-                const std::string& content_type = "") {
+  Response Call(const std::string& method, const std::string& target, const std::string& token = "",
+                const std::string& body = "", const std::string& content_type = "") {
     Request request;
     request.method = method;
     request.target = target;
@@ -109,9 +122,9 @@ class ServiceFixture : public ::testing::Test {
                     .status,
                 204);
     }
-    EXPECT_EQ(Call("PUT", "/v1/clips/" + id + "/map", token, clip.map, "application/octet-stream")
-                  .status,
-              204);
+    EXPECT_EQ(
+        Call("PUT", "/v1/clips/" + id + "/map", token, clip.map, "application/octet-stream").status,
+        204);
     EXPECT_EQ(Call("POST", "/v1/clips/" + id + "/publish", token).status, 200);
     return id;
   }
