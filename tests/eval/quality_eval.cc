@@ -1,12 +1,12 @@
 #include "tests/eval/quality_eval.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <map>
-
-#include <unistd.h>
+#include <functional>
 
 #include "capture-client/record/clip_recorder.h"
 #include "capture-client/source/synthetic_source.h"
@@ -15,6 +15,7 @@
 #include "proto/clip/clip_directory.h"
 #include "tests/eval/image_metrics.h"
 #include "viewer-client/play/reenactment.h"
+#include "viewer-client/play/texture_cache.h"
 #include "viewer-client/play/viewer_camera.h"
 #include "viewer-client/render/renderer.h"
 
@@ -63,8 +64,8 @@ Expected<std::vector<QualityRow>> RunQuality(const QualityOptions& options) {
   auto scene = capture::SyntheticScene::Create(options.scenario);
   if (!scene.ok()) return scene.error();
 
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    ("reenact-eval-" + std::to_string(::getpid()));
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("reenact-eval-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   auto reenactment = CaptureClip(options.scenario, dir / "clip");
   std::filesystem::remove_all(dir);
@@ -72,13 +73,7 @@ Expected<std::vector<QualityRow>> RunQuality(const QualityOptions& options) {
 
   auto renderer = viewer::Renderer::CreateHeadless(options.width, options.height);
   if (!renderer.ok()) return renderer.error();
-  std::map<int, int> texture_of_frame;
-  auto texture_for_frame = [&](int n) {
-    auto it = texture_of_frame.find(n);
-    if (it == texture_of_frame.end())
-      it = texture_of_frame.emplace(n, renderer->UploadTexture(reenactment->Texture(n))).first;
-    return it->second;
-  };
+  viewer::TextureCache texture_for_frame(*renderer, *reenactment);
   const PinholeCamera camera = viewer::ScaledViewerCamera(reenactment->manifest().color_camera,
                                                           options.width, options.height);
   std::vector<QualityRow> rows;
@@ -94,14 +89,16 @@ Expected<std::vector<QualityRow>> RunQuality(const QualityOptions& options) {
       for (int k = 0; k < reenactment->frame_count(); k += options.frame_step) {
         const auto t0 = std::chrono::steady_clock::now();
         viewer::ReenactedFrame rf =
-            reenactment->Build(k, camera, pose->viewer_from_world, texture_for_frame);
+            reenactment->Build(k, camera, pose->viewer_from_world, std::ref(texture_for_frame));
         rf.draw.bones.clear();
         const viewer::RenderedFrame out = renderer->Render(rf.draw);
-        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                         .count());
+        ms.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count());
         const capture::SyntheticView truth =
             scene->Render(k, camera, pose->world_from_viewer, {.draw_room = false});
-        const SubjectComparison c = CompareSubject(out.color, out.subject_mask, truth.color, truth.mask);
+        const SubjectComparison c =
+            CompareSubject(out.color, out.subject_mask, truth.color, truth.mask);
         if (std::isfinite(c.psnr_db)) {
           row.psnr_db += c.psnr_db;
           ++psnr_frames;

@@ -4,14 +4,14 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
-#include <map>
-
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "common/error/check.h"
 #include "viewer-client/output/contact_sheet.h"
 #include "viewer-client/output/mp4_writer.h"
 #include "viewer-client/output/png_writer.h"
+#include "viewer-client/play/texture_cache.h"
 #include "viewer-client/play/viewer_camera.h"
 #include "viewer-client/render/renderer.h"
 
@@ -43,8 +43,8 @@ Expected<PlaySummary> PlayHeadless(const Reenactment& reenactment, const std::st
   std::error_code ec;
   std::filesystem::create_directories(options.out_dir / "frames", ec);
   if (ec)
-    return MakeError("io", "cannot create output folder " + options.out_dir.string() + ": " +
-                               ec.message());
+    return MakeError(
+        "io", "cannot create output folder " + options.out_dir.string() + ": " + ec.message());
 
   auto renderer = Renderer::CreateHeadless(options.width, options.height);
   if (!renderer.ok()) return renderer.error();
@@ -54,16 +54,11 @@ Expected<PlaySummary> PlayHeadless(const Reenactment& reenactment, const std::st
       ScaledViewerCamera(manifest.color_camera, options.width, options.height);
   const auto view = OrbitViewFor(reenactment, options.orbit);
   if (!view)
-    return MakeError("degenerate", "cannot place the orbit camera: the capture sensor stands on "
-                                   "the subject's vertical axis");
+    return MakeError("degenerate",
+                     "cannot place the orbit camera: the capture sensor stands on "
+                     "the subject's vertical axis");
 
-  std::map<int, int> texture_of_frame;
-  auto texture_for_frame = [&](int n) {
-    auto it = texture_of_frame.find(n);
-    if (it == texture_of_frame.end())
-      it = texture_of_frame.emplace(n, renderer->UploadTexture(reenactment.Texture(n))).first;
-    return it->second;
-  };
+  TextureCache texture_for_frame(*renderer, reenactment);
 
   const int frames = options.max_frames < 0
                          ? reenactment.frame_count()
@@ -72,7 +67,8 @@ Expected<PlaySummary> PlayHeadless(const Reenactment& reenactment, const std::st
   std::vector<double> render_seconds;
   nlohmann::json frames_json = nlohmann::json::array();
   for (int k = 0; k < frames; ++k) {
-    ReenactedFrame rf = reenactment.Build(k, camera, view->viewer_from_world, texture_for_frame);
+    ReenactedFrame rf =
+        reenactment.Build(k, camera, view->viewer_from_world, std::ref(texture_for_frame));
     rf.draw.floor = view->floor;
     rf.draw.textured = options.textured;
     if (!options.draw_skeleton) rf.draw.bones.clear();
@@ -86,7 +82,8 @@ Expected<PlaySummary> PlayHeadless(const Reenactment& reenactment, const std::st
       return s.error();
     if (options.write_masks) {
       std::snprintf(name, sizeof name, "mask_%04d.png", k);
-      if (Status s = WritePng((options.out_dir / "frames" / name).string(), out.subject_mask); !s.ok())
+      if (Status s = WritePng((options.out_dir / "frames" / name).string(), out.subject_mask);
+          !s.ok())
         return s.error();
       std::snprintf(name, sizeof name, "frame_%04d.png", k);
     }
@@ -105,13 +102,15 @@ Expected<PlaySummary> PlayHeadless(const Reenactment& reenactment, const std::st
   if (!sorted.empty() && sorted[sorted.size() / 2] > 0)
     summary.render_fps = 1.0 / sorted[sorted.size() / 2];
 
-  const ImageRgb8 sheet = MakeContactSheet(rendered, options.contact_sheet_columns,
-                                           options.contact_sheet_thumb_width);
-  if (Status s = WritePng((options.out_dir / "contact_sheet.png").string(), sheet); !s.ok()) return s.error();
+  const ImageRgb8 sheet =
+      MakeContactSheet(rendered, options.contact_sheet_columns, options.contact_sheet_thumb_width);
+  if (Status s = WritePng((options.out_dir / "contact_sheet.png").string(), sheet); !s.ok())
+    return s.error();
 
   if (options.write_mp4 && !rendered.empty()) {
     const std::filesystem::path mp4 = options.out_dir / "reenactment.mp4";
-    auto writer = Mp4Writer::Open(mp4.string(), options.width, options.height, manifest.frame_rate_hz);
+    auto writer =
+        Mp4Writer::Open(mp4.string(), options.width, options.height, manifest.frame_rate_hz);
     if (writer.ok()) {
       for (const ImageRgb8& f : rendered)
         if (Status s = writer->Write(f); !s.ok()) return s.error();
@@ -122,19 +121,21 @@ Expected<PlaySummary> PlayHeadless(const Reenactment& reenactment, const std::st
     }
   }
 
-  const nlohmann::json render = {
-      {"clip_id", clip_id},
-      {"presentation", "orbit"},
-      {"orbit_angle_deg", options.orbit.angle_deg},
-      {"camera",
-       {{"width", camera.width}, {"height", camera.height}, {"fx", camera.fx}, {"fy", camera.fy},
-        {"cx", camera.cx}, {"cy", camera.cy}}},
-      {"world_from_viewer", PoseJson(view->world_from_viewer)},
-      {"render_fps", summary.render_fps},
-      {"frames", frames_json}};
+  const nlohmann::json render = {{"clip_id", clip_id},
+                                 {"presentation", "orbit"},
+                                 {"orbit_angle_deg", options.orbit.angle_deg},
+                                 {"camera",
+                                  {{"width", camera.width},
+                                   {"height", camera.height},
+                                   {"fx", camera.fx},
+                                   {"fy", camera.fy},
+                                   {"cx", camera.cx},
+                                   {"cy", camera.cy}}},
+                                 {"world_from_viewer", PoseJson(view->world_from_viewer)},
+                                 {"render_fps", summary.render_fps},
+                                 {"frames", frames_json}};
   std::ofstream(options.out_dir / "render.json") << render.dump(2) << "\n";
-  summary.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }
 

@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <map>
+#include <functional>
 
+#include "viewer-client/play/texture_cache.h"
 #include "viewer-client/play/viewer_camera.h"
 #include "viewer-client/render/window.h"
 
@@ -14,20 +15,40 @@ namespace {
 class PlaybackState : public WindowListener {
  public:
   PlaybackState(int frame_count, const HeadlessPlayOptions& options)
-      : frame_count_(frame_count), orbit_(options.orbit), textured_(options.textured),
+      : frame_count_(frame_count),
+        orbit_(options.orbit),
+        textured_(options.textured),
         skeleton_(options.draw_skeleton) {}
 
   void OnCommand(ViewerCommand c) override {
     switch (c) {
-      case ViewerCommand::kTogglePlay: playing_ = !playing_; break;
-      case ViewerCommand::kStepBackward: Step(-1); break;
-      case ViewerCommand::kStepForward: Step(+1); break;
-      case ViewerCommand::kFaster: speed_ = std::min(8.0, speed_ * 2); break;
-      case ViewerCommand::kSlower: speed_ = std::max(0.125, speed_ / 2); break;
-      case ViewerCommand::kToggleSkeleton: skeleton_ = !skeleton_; break;
-      case ViewerCommand::kToggleBareCylinders: textured_ = false; break;
-      case ViewerCommand::kToggleTexture: textured_ = !textured_; break;
-      case ViewerCommand::kQuit: quit_ = true; break;
+      case ViewerCommand::kTogglePlay:
+        playing_ = !playing_;
+        break;
+      case ViewerCommand::kStepBackward:
+        Step(-1);
+        break;
+      case ViewerCommand::kStepForward:
+        Step(+1);
+        break;
+      case ViewerCommand::kFaster:
+        speed_ = std::min(8.0, speed_ * 2);
+        break;
+      case ViewerCommand::kSlower:
+        speed_ = std::max(0.125, speed_ / 2);
+        break;
+      case ViewerCommand::kToggleSkeleton:
+        skeleton_ = !skeleton_;
+        break;
+      case ViewerCommand::kToggleBareCylinders:
+        textured_ = false;
+        break;
+      case ViewerCommand::kToggleTexture:
+        textured_ = !textured_;
+        break;
+      case ViewerCommand::kQuit:
+        quit_ = true;
+        break;
     }
   }
   void OnOrbit(double dx, double dy) override {
@@ -75,13 +96,7 @@ Status PlayInWindow(const Reenactment& reenactment, const HeadlessPlayOptions& o
   Renderer& renderer = window->renderer();
   const PinholeCamera camera =
       ScaledViewerCamera(reenactment.manifest().color_camera, options.width, options.height);
-  std::map<int, int> texture_of_frame;
-  auto texture_for_frame = [&](int n) {
-    auto it = texture_of_frame.find(n);
-    if (it == texture_of_frame.end())
-      it = texture_of_frame.emplace(n, renderer.UploadTexture(reenactment.Texture(n))).first;
-    return it->second;
-  };
+  TextureCache texture_for_frame(renderer, reenactment);
 
   PlaybackState state(reenactment.frame_count(), options);
   auto last = std::chrono::steady_clock::now();
@@ -93,8 +108,8 @@ Status PlayInWindow(const Reenactment& reenactment, const HeadlessPlayOptions& o
     last = now;
     const auto view = OrbitViewFor(reenactment, state.orbit());
     if (!view) return MakeError("degenerate", "cannot place the orbit camera");
-    ReenactedFrame rf =
-        reenactment.Build(state.frame(), camera, view->viewer_from_world, texture_for_frame);
+    ReenactedFrame rf = reenactment.Build(state.frame(), camera, view->viewer_from_world,
+                                          std::ref(texture_for_frame));
     rf.draw.floor = view->floor;
     rf.draw.textured = state.textured();
     if (!state.skeleton()) rf.draw.bones.clear();
