@@ -12,12 +12,6 @@
 namespace reenact {
 namespace {
 
-constexpr int kNeck = Index(Joint::kNeck);
-
-// Offset slot j (0..14) holds joint j for the head and joint j + 1 after it, so slots run
-// in the joint order of TextureSelectionCost's sum (the neck adds an exact 0 there).
-constexpr int JointOfSlot(int j) { return j < kNeck ? j : j + 1; }
-
 // The candidate order of RankTextureFrames: ascending cost, then ascending frame.
 bool Better(const TextureCandidate& x, const TextureCandidate& y) {
   return x.cost < y.cost || (x.cost == y.cost && x.frame < y.frame);
@@ -28,10 +22,6 @@ bool Better(const TextureCandidate& x, const TextureCandidate& y) {
 double PruneAbove(double kth_cost) { return kth_cost + 1e-9 * kth_cost + 1e-12; }
 
 }  // namespace
-
-void TextureIndexSearch::Check() const {
-  REENACT_CHECK(max_frames >= 0, "max_frames must be >= 0");
-}
 
 void TextureIndexOptions::Check() const { REENACT_CHECK(leaf_size >= 1, "leaf_size must be >= 1"); }
 
@@ -47,16 +37,8 @@ TextureIndex::TextureIndex(std::span<const Skeleton> stored, std::span<const boo
     const Skeleton& s = stored[n];
     if ((!usable.empty() && !usable[n]) || !s.Has(Joint::kNeck)) continue;
     frame_.push_back(static_cast<int>(n));
-    uint16_t mask = 0;
-    for (int j = 0; j < kOffsets; ++j) {
-      const int i = JointOfSlot(j);
-      const bool has = s.confidence[i] > 0;
-      const Eigen::Vector3d o =
-          has ? Eigen::Vector3d(s.position[i] - s[Joint::kNeck]) : Eigen::Vector3d::Zero();
-      if (has) mask |= static_cast<uint16_t>(1u << j);
-      offset_.insert(offset_.end(), o.data(), o.data() + 3);
-    }
-    present_.push_back(mask);
+    offset_.resize(offset_.size() + kDims);
+    present_.push_back(WriteNeckOffsets(s, &offset_[offset_.size() - kDims]));
   }
   if (frame_.empty()) return;
   nodes_.reserve(2 * frame_.size() / options.leaf_size + 2);
@@ -192,24 +174,14 @@ double TextureIndex::LowerBound(const Node& node, const double* q, uint16_t quer
 
 std::vector<TextureCandidate> TextureIndex::Rank(const Skeleton& viewer,
                                                  const TextureSelectionOptions& options,
-                                                 TextureIndexStats* stats,
-                                                 const TextureIndexSearch& search) const {
+                                                 TextureIndexStats* stats) const {
   options.Check();
-  search.Check();
   if (stats) *stats = {};
   if (nodes_.empty() || !viewer.Has(Joint::kNeck)) return {};
   const double m = options.missing_joint_cost_m;
 
   double q[kDims];
-  uint16_t query_mask = 0;
-  for (int j = 0; j < kOffsets; ++j) {
-    const int i = JointOfSlot(j);
-    const bool has = viewer.confidence[i] > 0;
-    const Eigen::Vector3d o =
-        has ? Eigen::Vector3d(viewer.position[i] - viewer[Joint::kNeck]) : Eigen::Vector3d::Zero();
-    if (has) query_mask |= static_cast<uint16_t>(1u << j);
-    std::copy_n(o.data(), 3, &q[3 * j]);
-  }
+  const uint16_t query_mask = WriteNeckOffsets(viewer, q);
 
   const size_t k = std::min(static_cast<size_t>(options.top_k), frame_.size());
   std::vector<TextureCandidate> best;  // max-heap under Better: best.front() is the k-th
@@ -224,17 +196,8 @@ std::vector<TextureCandidate> TextureIndex::Rank(const Skeleton& viewer,
     for (int f = node.begin; f < node.end; ++f) {
       ++evaluated;
       const double limit = bound();
-      const double* o = &offset_[static_cast<size_t>(f) * kDims];
-      const uint16_t both = present_[f] & query_mask;
-      double cost = 0;
-      for (int j = 0; j < kOffsets && cost <= limit; ++j) {
-        if (both & (1u << j))
-          cost += (Eigen::Map<const Eigen::Vector3d>(&q[3 * j]) -
-                   Eigen::Map<const Eigen::Vector3d>(&o[3 * j]))
-                      .norm();
-        else
-          cost += m;
-      }
+      const double cost = NeckOffsetCost(q, query_mask, &offset_[static_cast<size_t>(f) * kDims],
+                                         present_[f], m, limit);
       if (cost > limit) continue;
       const TextureCandidate candidate{frame_[f], cost};
       if (best.size() < k) {
@@ -266,7 +229,6 @@ std::vector<TextureCandidate> TextureIndex::Rank(const Skeleton& viewer,
     const auto [lb, next] = queue.top();
     queue.pop();
     if (lb > bound()) break;
-    if (search.max_frames > 0 && evaluated >= search.max_frames && best.size() == k) break;
     ++visited;
     const Node& node = nodes_[next];
     if (node.left < 0) {

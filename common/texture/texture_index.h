@@ -28,6 +28,7 @@
 // sum) so rounding never drops a frame.
 //
 // Frames without a neck (unscorable) and frames flagged unusable are left out at build time.
+// For an approximate answer in far less time on long clips, see texture_graph_index.h.
 // missing_joint_cost_m and top_k are per query, as in RankTextureFrames.
 // Memory: 362 bytes per indexed frame plus about 1.3 kB per tree node (2 N / leaf_size of
 // them), about 440 bytes per frame with the default leaf size.
@@ -37,6 +38,7 @@
 #include <vector>
 
 #include "common/skeleton/skeleton.h"
+#include "common/texture/neck_offsets.h"
 #include "common/texture/texture_selection.h"
 
 namespace reenact {
@@ -45,16 +47,6 @@ namespace reenact {
 struct TextureIndexStats {
   int64_t frames_evaluated = 0;  // frames whose cost was computed (some only partly)
   int64_t nodes_visited = 0;     // tree nodes taken from the search queue
-};
-
-// How hard one query searches. The default is exact; a frame budget makes it approximate:
-// the search stops once it has evaluated that many frames (and holds top_k candidates),
-// returning the best found so far, still ranked and with exact costs, in far less time on
-// long clips (reenact-bench core reports its recall against the scan).
-struct TextureIndexSearch {
-  int64_t max_frames = 0;  // frames to evaluate at most; 0 = no limit (exact), >= 0
-
-  void Check() const;
 };
 
 struct TextureIndexOptions {
@@ -77,20 +69,18 @@ class TextureIndex {
   // Exactly RankTextureFrames(viewer_skeleton, stored, options, usable) for the stored
   // skeletons and usable flags given at build time: the top_k frames by ascending Eq. 5 cost,
   // ties to the lower frame index; empty if no frame can be scored or the viewer lacks a neck.
-  // stats (if not null) receives what the query did. A budget in `search` makes the answer
-  // approximate (see TextureIndexSearch). Safe to call from several threads at once.
+  // stats (if not null) receives what the query did. Safe to call from several threads at once.
   std::vector<TextureCandidate> Rank(const Skeleton& viewer_skeleton,
                                      const TextureSelectionOptions& options = {},
-                                     TextureIndexStats* stats = nullptr,
-                                     const TextureIndexSearch& search = {}) const;
+                                     TextureIndexStats* stats = nullptr) const;
 
   int stored_count() const { return stored_count_; }  // skeletons given at build time
   int indexed_count() const { return static_cast<int>(frame_.size()); }  // scorable and usable
   int node_count() const { return static_cast<int>(nodes_.size()); }
 
  private:
-  static constexpr int kOffsets = kJointCount - 1;  // the non-neck joints
-  static constexpr int kDims = 3 * kOffsets;
+  static constexpr int kOffsets = kNeckOffsetSlots;
+  static constexpr int kDims = kNeckOffsetDims;
 
   struct Node {
     int begin = 0, end = 0;       // range in tree order

@@ -1,6 +1,10 @@
 // reenact-bench: speed, reported as medians over repetitions, with ratios against a baseline
 // measured in the same run.
 
+#include <algorithm>
+#include <optional>
+#include <string>
+
 #include "common/cli/command_line.h"
 #include "proto/report/report_table.h"
 #include "tests/bench/core_bench.h"
@@ -12,7 +16,8 @@ using namespace reenact;
 
 constexpr const char* kUsage =
     "usage:\n"
-    "  reenact-bench core [--repeats R] [--quick] [--json FILE]\n"
+    "  reenact-bench core [--repeats R] [--quick] [--only GROUP] [--json FILE]\n"
+    "                     groups: selection, mapping, render, model\n"
     "  reenact-bench server ...\n"
     "  reenact-bench capture|viewer ...   (not in this build yet)\n";
 
@@ -25,12 +30,18 @@ int Core(const CommandLine& cl) {
   const bench::CoreBenchOptions options{static_cast<int>(*repeats), cl.Has("quick")};
   proto::Report report{"core", {}};
   // Each group of rows prints as its own table.
-  const std::pair<const char*, void (*)(proto::Report&, const bench::CoreBenchOptions&)>
-      groups[] = {{"selection", bench::AddSelectionRows},
-                  {"mapping", bench::AddMappingRows},
-                  {"render", bench::AddRenderRows},
-                  {"model", bench::AddModelRows}};
+  const std::pair<const char*, void (*)(proto::Report&, const bench::CoreBenchOptions&)> groups[] =
+      {{"selection", bench::AddSelectionRows},
+       {"mapping", bench::AddMappingRows},
+       {"render", bench::AddRenderRows},
+       {"model", bench::AddModelRows}};
+  const std::optional<std::string> only = cl.Get("only");
+  if (only && std::none_of(std::begin(groups), std::end(groups),
+                           [&](const auto& g) { return *only == g.first; }))
+    return Fail(MakeError("usage", "--only: unknown group '" + *only +
+                                       "'; groups: selection, mapping, render, model"));
   for (const auto& [table, add] : groups) {
+    if (only && *only != table) continue;
     const size_t first = report.rows.size();
     add(report, options);
     for (size_t r = first; r < report.rows.size(); ++r) report.rows[r].table = table;
@@ -49,11 +60,10 @@ int NotYet(const CommandLine& cl) {
 
 int main(int argc, char** argv) {
   // Flags of every command; each command reads its own.
-  const CommandLineSpec spec{{"repeats", "json", "clips", "clients", "seconds", "db"}, {"quick"}};
-  return RunTool("reenact-bench", kUsage, spec,
-                 {{"core", Core},
-                  {"server", bench::RunServerBench},
-                  {"capture", NotYet},
-                  {"viewer", NotYet}},
-                 argc, argv);
+  const CommandLineSpec spec{{"repeats", "only", "json", "clips", "clients", "seconds", "db"},
+                             {"quick"}};
+  return RunTool(
+      "reenact-bench", kUsage, spec,
+      {{"core", Core}, {"server", bench::RunServerBench}, {"capture", NotYet}, {"viewer", NotYet}},
+      argc, argv);
 }
