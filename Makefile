@@ -1,9 +1,10 @@
-# The two commands a newcomer needs: `make demo` and `make test`.
+# The two commands a newcomer needs: `make demo` and `make test`. `make eval` (not part of
+# `make test`) measures image quality against ground truth and rewrites docs/quality.md.
 BUILD_DIR ?= build
 BUILD_TYPE ?= Release
 JOBS ?= 2
 
-.PHONY: all deps configure build test demo clean
+.PHONY: all deps configure build test demo eval clean
 
 all: build
 
@@ -21,6 +22,17 @@ test: build
 
 demo: build
 	@bash deploy/demo.sh $(BUILD_DIR)
+
+# The standard quality set: the table, the rules, the machine and a few side-by-side pictures
+# (ground truth | reenactment | error) in docs/quality.md and docs/quality/.
+EVAL_ARGS ?= --scenario turn-and-kick --methods thesis --views 0,30,60,90,135,180 --step 10 \
+             --image-pairs 90@0,90@90,135@60,165@180
+eval: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS) --target reenact-eval
+	@mkdir -p docs/quality
+	@rm -f docs/quality/*.png
+	@$(BUILD_DIR)/tests/eval/reenact-eval quality $(EVAL_ARGS) --images docs/quality \
+		--json docs/quality/quality.json --markdown docs/quality.md
 
 clean:
 	rm -rf $(BUILD_DIR) demo-out var

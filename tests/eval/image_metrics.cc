@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-
 #include <opencv2/imgproc.hpp>
 
 #include "common/error/check.h"
@@ -16,8 +15,7 @@ cv::Mat OnBlack(const ImageRgb8& colour, const ImageGray8& mask, const cv::Rect&
   for (int y = 0; y < box.height; ++y)
     for (int x = 0; x < box.width; ++x)
       if (mask.at(box.x + x, box.y + y) > 127)
-        for (int c = 0; c < 3; ++c)
-          out.at<cv::Vec3b>(y, x)[c] = colour.at(box.x + x, box.y + y, c);
+        for (int c = 0; c < 3; ++c) out.at<cv::Vec3b>(y, x)[c] = colour.at(box.x + x, box.y + y, c);
   return out;
 }
 
@@ -46,6 +44,18 @@ double Ssim(const cv::Mat& a_rgb, const cv::Mat& b_rgb) {
 
 }  // namespace
 
+PixelBox UnionBox(const ImageGray8& mask_a, const ImageGray8& mask_b) {
+  REENACT_CHECK(mask_a.width == mask_b.width && mask_a.height == mask_b.height,
+                "masks must share one size");
+  int x0 = mask_a.width, y0 = mask_a.height, x1 = -1, y1 = -1;
+  for (int y = 0; y < mask_a.height; ++y)
+    for (int x = 0; x < mask_a.width; ++x)
+      if (mask_a.at(x, y) > 127 || mask_b.at(x, y) > 127)
+        x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+  if (x1 < 0) return {};
+  return {x0, y0, x1 - x0 + 1, y1 - y0 + 1};
+}
+
 SubjectComparison CompareSubject(const ImageRgb8& rendered, const ImageGray8& rendered_mask,
                                  const ImageRgb8& truth, const ImageGray8& truth_mask) {
   REENACT_CHECK(rendered.width == truth.width && rendered.height == truth.height &&
@@ -53,14 +63,13 @@ SubjectComparison CompareSubject(const ImageRgb8& rendered, const ImageGray8& re
                     rendered_mask.height == truth.height && truth_mask.height == truth.height,
                 "images must share one size");
   SubjectComparison out;
-  int x0 = truth.width, y0 = truth.height, x1 = -1, y1 = -1, inter = 0;
+  int inter = 0;
   double abs_sum = 0;
   for (int y = 0; y < truth.height; ++y)
     for (int x = 0; x < truth.width; ++x) {
       const bool r = rendered_mask.at(x, y) > 127, t = truth_mask.at(x, y) > 127;
       if (!(r || t)) continue;
       ++out.union_pixels;
-      x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
       if (r && t) {
         ++inter;
         for (int c = 0; c < 3; ++c) abs_sum += std::abs(rendered.at(x, y, c) - truth.at(x, y, c));
@@ -74,7 +83,8 @@ SubjectComparison CompareSubject(const ImageRgb8& rendered, const ImageGray8& re
   }
   out.iou = static_cast<double>(inter) / out.union_pixels;
   out.colour_mae = inter ? abs_sum / (3.0 * inter) : 0;
-  const cv::Rect box(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
+  const PixelBox union_box = UnionBox(rendered_mask, truth_mask);
+  const cv::Rect box(union_box.x, union_box.y, union_box.width, union_box.height);
   const cv::Mat a = OnBlack(rendered, rendered_mask, box), b = OnBlack(truth, truth_mask, box);
   cv::Mat diff;
   cv::absdiff(a, b, diff);

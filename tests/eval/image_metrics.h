@@ -15,6 +15,15 @@
 
 namespace reenact::eval {
 
+// The comparison box: the bounding box of the union of two silhouettes (mask > 127), pixels
+// [x, x + width) x [y, y + height); width = height = 0 when both are empty. Precondition
+// (CHECK): the masks share one size.
+struct PixelBox {
+  int x = 0, y = 0, width = 0, height = 0;
+  bool empty() const { return width == 0 || height == 0; }
+};
+PixelBox UnionBox(const ImageGray8& mask_a, const ImageGray8& mask_b);
+
 struct SubjectComparison {
   double psnr_db = 0;
   double ssim = 0;

@@ -1,10 +1,10 @@
 // reenact-eval: accuracy against ground truth. `quality` today; slam, reloc and tracker
 // arrive with their components.
-#include <sstream>
+#include <iostream>
 
 #include "common/cli/command_line.h"
-#include "proto/report/report_table.h"
-#include "tests/eval/quality_eval.h"
+#include "tests/eval/quality_cli.h"
+#include "tests/eval/quality_report.h"
 
 namespace {
 
@@ -13,61 +13,34 @@ using namespace reenact;
 constexpr const char* kUsage =
     "usage:\n"
     "  reenact-eval quality [--scenario S] [--methods LIST] [--views DEG,...] [--step K]\n"
-    "                       [--json FILE]\n"
+    "                       [--json FILE] [--markdown FILE] [--images DIR]\n"
+    "                       [--image-pairs FRAME@DEG,...]\n"
+    "      S: a synthetic scenario (default turn-and-kick); LIST: methods (default thesis);\n"
+    "      views default 0,30,60,90,135,180; every K-th frame (default 10); --images writes\n"
+    "      ground truth | reenactment | error pictures (default pairs: the middle frame at\n"
+    "      every view)\n"
     "  reenact-eval slam|reloc|tracker ...   (not in this build yet)\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-eval", e); }
 
-Expected<std::vector<std::string>> SplitList(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream ss(text);
-  for (std::string item; std::getline(ss, item, ',');)
-    if (!item.empty()) out.push_back(item);
-  if (out.empty()) return MakeError("usage", "empty list '" + text + "'");
-  return out;
-}
-
 int Quality(const CommandLine& cl) {
-  eval::QualityOptions options;
-  options.scenario = cl.GetOr("scenario", options.scenario);
-  if (auto m = cl.Get("methods")) {
-    auto list = SplitList(*m);
-    if (!list.ok()) return Fail(list.error());
-    options.methods = *list;
-  }
-  if (auto v = cl.Get("views")) {
-    auto list = SplitList(*v);
-    if (!list.ok()) return Fail(list.error());
-    options.views_deg.clear();
-    for (const std::string& s : *list) {
-      char* end = nullptr;
-      const double d = std::strtod(s.c_str(), &end);
-      if (end != s.c_str() + s.size())
-        return Fail(MakeError("usage", "--views: not a number: " + s));
-      options.views_deg.push_back(d);
-    }
-  }
-  const auto step = cl.GetInt("step", options.frame_step);
-  if (!step.ok()) return Fail(step.error());
-  if (*step < 1) return Fail(MakeError("usage", "--step must be >= 1"));
-  options.frame_step = static_cast<int>(*step);
+  const auto command = eval::ParseQualityCommand(cl);
+  if (!command.ok()) return Fail(command.error());
+  const auto run = eval::RunQuality(command->options);
+  if (!run.ok()) return Fail(run.error());
 
-  const auto rows = eval::RunQuality(options);
-  if (!rows.ok()) return Fail(rows.error());
-  proto::Report report{"quality", {}};
-  for (const auto& r : *rows)
-    report.rows.push_back(proto::ReportRow{}
-                              .Add("method", r.method)
-                              .Add("scenario", r.scenario)
-                              .Add("view_deg", r.view_deg)
-                              .Add("n", static_cast<long long>(r.n))
-                              .Add("psnr_db", r.psnr_db)
-                              .Add("ssim", r.ssim)
-                              .Add("iou", r.iou)
-                              .Add("colour_mae", r.colour_mae)
-                              .Add("ms_per_frame", r.ms_per_frame));
-  const Status printed = report.Print(cl.Get("json"));
-  return printed.ok() ? 0 : Fail(printed.error());
+  const Status printed = eval::QualityReport(*run).Print(command->json_path);
+  for (const std::string& rule : eval::QualityRules()) std::cout << rule << "\n";
+  for (const eval::QualityImage& image : run->images) std::cout << "wrote " << image.path << "\n";
+  if (!printed.ok()) return Fail(printed.error());
+  if (command->markdown_path) {
+    const std::string markdown = eval::QualityMarkdown(
+        command->options, *run, *command->markdown_path, eval::MachineLine(run->gl_renderer));
+    if (Status s = eval::WriteTextFile(*command->markdown_path, markdown); !s.ok())
+      return Fail(s.error());
+    std::cout << "wrote " << *command->markdown_path << "\n";
+  }
+  return 0;
 }
 
 int NotYet(const CommandLine& cl) {
@@ -79,7 +52,7 @@ int NotYet(const CommandLine& cl) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const CommandLineSpec spec{{"scenario", "methods", "views", "step", "json"}, {}};
+  const CommandLineSpec spec{eval::QualityFlags(), {}};
   return RunTool("reenact-eval", kUsage, spec,
                  {{"quality", Quality}, {"slam", NotYet}, {"reloc", NotYet}, {"tracker", NotYet}},
                  argc, argv);

@@ -1,23 +1,22 @@
 #include "tests/eval/quality_eval.h"
 
+#include <epoxy/gl.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
-#include <functional>
+#include <map>
 
 #include "capture-client/record/clip_recorder.h"
 #include "capture-client/source/synthetic_source.h"
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "common/error/check.h"
 #include "proto/clip/clip_directory.h"
-#include "tests/eval/image_metrics.h"
-#include "viewer-client/play/reenactment.h"
-#include "viewer-client/play/texture_cache.h"
+#include "tests/eval/side_by_side.h"
+#include "viewer-client/output/png_writer.h"
 #include "viewer-client/play/viewer_camera.h"
-#include "viewer-client/render/renderer.h"
 
 namespace reenact::eval {
 namespace {
@@ -28,11 +27,24 @@ double Median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-Expected<viewer::Reenactment> CaptureClip(const std::string& scenario,
-                                          const std::filesystem::path& dir) {
-  auto source = capture::SyntheticSource::Open(scenario);
+// The scene and the frame source of the options' scenario: the one place both are made, so
+// that a further scene choice (a body, a seed) is passed on to both.
+struct OpenedScenario {
+  capture::SyntheticScene scene;
+  std::unique_ptr<capture::FrameSource> source;
+};
+Expected<OpenedScenario> OpenScenario(const QualityOptions& options) {
+  auto scene = capture::SyntheticScene::Create(options.scenario);
+  if (!scene.ok()) return scene.error();
+  auto source = capture::SyntheticSource::Open(options.scenario);
   if (!source.ok()) return source.error();
-  auto recorded = capture::RecordClip(**source, dir, {});
+  return OpenedScenario{std::move(scene).value(), std::move(source).value()};
+}
+
+// Records the source into a clip directory under `dir` and reads it back, as a viewer would.
+Expected<viewer::Reenactment> CaptureClip(capture::FrameSource& source,
+                                          const std::filesystem::path& dir) {
+  auto recorded = capture::RecordClip(source, dir, {});
   if (!recorded.ok()) return recorded.error();
   auto clip = proto::ReadClipDirectory(dir);
   if (!clip.ok()) return clip.error();
@@ -45,77 +57,232 @@ Expected<viewer::Reenactment> CaptureClip(const std::string& scenario,
   return viewer::Reenactment(clip->manifest(), std::move(frames));
 }
 
+double SilhouetteIou(const ImageGray8& a, const ImageGray8& b) {
+  int both = 0, either = 0;
+  for (size_t i = 0; i < a.data.size(); ++i) {
+    const bool x = a.data[i] > 127, y = b.data[i] > 127;
+    both += x && y;
+    either += x || y;
+  }
+  return either ? static_cast<double>(both) / either : 1.0;
+}
+
+std::string ImageName(const std::string& method, const ImagePair& pair) {
+  char name[96];
+  std::snprintf(name, sizeof(name), "_f%03d_v%03ld.png", pair.frame, std::lround(pair.view_deg));
+  return method + name;
+}
+
 }  // namespace
 
 void QualityOptions::Check() const {
   REENACT_CHECK(frame_step >= 1, "frame_step must be >= 1");
   REENACT_CHECK(width >= 16 && height >= 16, "output must be at least 16x16");
   REENACT_CHECK(!methods.empty() && !views_deg.empty(), "need a method and a view");
+  for (double v : views_deg) REENACT_CHECK(std::isfinite(v), "view angles must be finite");
+  for (const ImagePair& p : image_pairs)
+    REENACT_CHECK(p.frame >= 0 && std::isfinite(p.view_deg),
+                  "image pairs need a frame >= 0 and a finite angle");
 }
 
-std::vector<std::string> QualityMethods() { return {"thesis"}; }
+struct QualityHarness::State {
+  capture::SyntheticScene scene;
+  viewer::Reenactment clip;
+  viewer::Renderer renderer;
+  PinholeCamera camera;
+  std::string gl_renderer;
+  std::map<int, int> texture_of_frame;  // stored frame -> GL texture index
+  std::map<int, int> frame_of_texture;
+  std::map<int, ReferenceCrop> crops;        // stored frame -> the crop as the reference samples it
+  std::map<int, ImageLabel8> sensor_labels;  // stored frame -> the scene's labels from the sensor
 
-Expected<std::vector<QualityRow>> RunQuality(const QualityOptions& options) {
+  int TextureFor(int n) {
+    auto it = texture_of_frame.find(n);
+    if (it != texture_of_frame.end()) return it->second;
+    const viewer::StoredTexture t = clip.Texture(n);
+    const int index = renderer.UploadTexture(t);
+    crops[n] = ReferenceCrop{t.color, t.mask, t.camera};
+    frame_of_texture[index] = n;
+    return texture_of_frame[n] = index;
+  }
+
+  SourceLabels LabelsFor(int n) {
+    auto it = sensor_labels.find(n);
+    if (it == sensor_labels.end())
+      it = sensor_labels.emplace(n, scene.RenderSensor(n).part_labels).first;
+    const proto::ClipFrame& f = clip.frame(n);
+    return {&crops.at(n).mask, f.crop_x, f.crop_y, &it->second};
+  }
+};
+
+QualityHarness::QualityHarness(std::unique_ptr<State> state) : state_(std::move(state)) {}
+QualityHarness::QualityHarness(QualityHarness&&) noexcept = default;
+QualityHarness& QualityHarness::operator=(QualityHarness&&) noexcept = default;
+QualityHarness::~QualityHarness() = default;
+
+const viewer::Reenactment& QualityHarness::clip() const { return state_->clip; }
+const capture::SyntheticScene& QualityHarness::scene() const { return state_->scene; }
+const PinholeCamera& QualityHarness::camera() const { return state_->camera; }
+const std::string& QualityHarness::gl_renderer() const { return state_->gl_renderer; }
+
+Expected<QualityHarness> QualityHarness::Create(const QualityOptions& options) {
   options.Check();
-  const auto known = QualityMethods();
-  for (const std::string& m : options.methods)
-    if (std::find(known.begin(), known.end(), m) == known.end())
-      return MakeError("usage", "unknown method '" + m + "'; available: thesis");
-  auto scene = capture::SyntheticScene::Create(options.scenario);
-  if (!scene.ok()) return scene.error();
+  auto opened = OpenScenario(options);
+  if (!opened.ok()) return opened.error();
 
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("reenact-eval-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
-  auto reenactment = CaptureClip(options.scenario, dir / "clip");
+  auto clip = CaptureClip(*opened->source, dir / "clip");
   std::filesystem::remove_all(dir);
-  if (!reenactment.ok()) return reenactment.error();
+  if (!clip.ok()) return clip.error();
+  if (clip->frame_count() != opened->scene.frame_count())
+    return MakeError("internal", "the clip has " + std::to_string(clip->frame_count()) +
+                                     " frames, the scene " +
+                                     std::to_string(opened->scene.frame_count()));
 
   auto renderer = viewer::Renderer::CreateHeadless(options.width, options.height);
   if (!renderer.ok()) return renderer.error();
-  viewer::TextureCache texture_for_frame(*renderer, *reenactment);
-  const PinholeCamera camera = viewer::ScaledViewerCamera(reenactment->manifest().color_camera,
-                                                          options.width, options.height);
-  std::vector<QualityRow> rows;
-  for (const std::string& method : options.methods)
+  const auto* gl_name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const PinholeCamera camera =
+      viewer::ScaledViewerCamera(clip->manifest().color_camera, options.width, options.height);
+  return QualityHarness(std::unique_ptr<State>(new State{std::move(opened->scene),
+                                                         std::move(clip).value(),
+                                                         std::move(renderer).value(),
+                                                         camera,
+                                                         gl_name ? gl_name : "unknown",
+                                                         {},
+                                                         {},
+                                                         {},
+                                                         {}}));
+}
+
+Expected<Eigen::Isometry3d> QualityHarness::ViewerFromWorld(double view_deg) const {
+  viewer::OrbitCameraOptions orbit;
+  orbit.angle_deg = view_deg;
+  const auto view = viewer::OrbitViewFor(state_->clip, orbit);
+  if (!view)
+    return MakeError("degenerate", "cannot place the orbit camera at " + std::to_string(view_deg) +
+                                       " degrees: the sensor lies on the subject's vertical axis");
+  return view->viewer_from_world;
+}
+
+Expected<FrameEvaluation> QualityHarness::Evaluate(const QualityMethod& method, double view_deg,
+                                                   int k) {
+  State& s = *state_;
+  REENACT_CHECK(k >= 0 && k < s.clip.frame_count(), "output frame out of range");
+  const auto viewer_from_world = ViewerFromWorld(view_deg);
+  if (!viewer_from_world.ok()) return viewer_from_world.error();
+
+  FrameEvaluation e;
+  const auto t0 = std::chrono::steady_clock::now();
+  e.frame = method.build(s.clip, k, s.camera, *viewer_from_world,
+                         [&s](int n) { return s.TextureFor(n); });
+  e.rendered = s.renderer.Render(e.frame.draw);
+  e.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  REENACT_CHECK(e.frame.cylinder_parts.size() == e.frame.draw.cylinders.size(),
+                "method " + method.name + " must name the body part of every cylinder");
+
+  std::vector<ReferencePart> parts;
+  for (const viewer::CylinderDraw& c : e.frame.draw.cylinders) {
+    ReferencePart part;
+    part.cylinder = Cylinder{c.a, c.b, c.radius};
+    part.stored_from_viewer = c.stored_from_viewer;
+    part.color = c.color;
+    if (c.texture >= 0 && e.frame.draw.textured) {
+      part.stored_frame = s.frame_of_texture.at(c.texture);
+      part.crop = &s.crops.at(part.stored_frame);
+    }
+    parts.push_back(part);
+  }
+  e.reference = RenderReference(s.camera, parts);
+  e.provenance = MeasurePartProvenance(e.reference, e.frame.cylinder_parts,
+                                       [&s](int n) { return s.LabelsFor(n); });
+  e.reference_iou = SilhouetteIou(e.rendered.subject_mask, e.reference.mask);
+
+  e.truth = s.scene.Render(k, s.camera, viewer_from_world->inverse(), {.draw_room = false});
+  e.comparison =
+      CompareSubject(e.rendered.color, e.rendered.subject_mask, e.truth.color, e.truth.mask);
+  return e;
+}
+
+Expected<QualityRun> RunQuality(const QualityOptions& options) {
+  options.Check();
+  std::vector<const QualityMethod*> methods;
+  for (const std::string& name : options.methods) {
+    auto m = FindQualityMethod(name);
+    if (!m.ok()) return m.error();
+    methods.push_back(*m);
+  }
+  auto harness = QualityHarness::Create(options);
+  if (!harness.ok()) return harness.error();
+
+  QualityRun run;
+  run.clip_frames = harness->clip().frame_count();
+  run.gl_renderer = harness->gl_renderer();
+  std::vector<ImagePair> pairs = options.image_pairs;
+  if (pairs.empty()) {
+    const int step = options.frame_step;
+    int middle = static_cast<int>(std::lround((run.clip_frames - 1) / 2.0 / step)) * step;
+    if (middle >= run.clip_frames) middle -= step;
+    for (double view : options.views_deg) pairs.push_back({middle, view});
+  }
+  if (!options.image_dir.empty()) {
+    for (const ImagePair& p : pairs)
+      if (p.frame >= run.clip_frames)
+        return MakeError("usage", "image frame " + std::to_string(p.frame) +
+                                      " is beyond the clip's " + std::to_string(run.clip_frames) +
+                                      " frames");
+    std::error_code ec;
+    std::filesystem::create_directories(options.image_dir, ec);
+    if (ec)
+      return MakeError("io",
+                       "cannot create the image folder " + options.image_dir + ": " + ec.message());
+  }
+
+  for (const QualityMethod* method : methods) {
     for (double view : options.views_deg) {
-      viewer::OrbitCameraOptions orbit;
-      orbit.angle_deg = view;
-      const auto pose = viewer::OrbitViewFor(*reenactment, orbit);
-      if (!pose) return MakeError("degenerate", "cannot place the orbit camera");
-      QualityRow row{method, options.scenario, view};
+      QualityRow row{method->name, options.scenario, view};
       std::vector<double> ms;
       int psnr_frames = 0;
-      for (int k = 0; k < reenactment->frame_count(); k += options.frame_step) {
-        const auto t0 = std::chrono::steady_clock::now();
-        viewer::ReenactedFrame rf =
-            reenactment->Build(k, camera, pose->viewer_from_world, std::ref(texture_for_frame));
-        rf.draw.bones.clear();
-        const viewer::RenderedFrame out = renderer->Render(rf.draw);
-        ms.push_back(
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                .count());
-        const capture::SyntheticView truth =
-            scene->Render(k, camera, pose->world_from_viewer, {.draw_room = false});
-        const SubjectComparison c =
-            CompareSubject(out.color, out.subject_mask, truth.color, truth.mask);
-        if (std::isfinite(c.psnr_db)) {
-          row.psnr_db += c.psnr_db;
+      for (int k = 0; k < run.clip_frames; k += options.frame_step) {
+        auto e = harness->Evaluate(*method, view, k);
+        if (!e.ok()) return e.error();
+        ms.push_back(e->ms);
+        if (std::isfinite(e->comparison.psnr_db)) {
+          row.psnr_db += e->comparison.psnr_db;
           ++psnr_frames;
         }
-        row.ssim += c.ssim;
-        row.iou += c.iou;
-        row.colour_mae += c.colour_mae;
+        row.ssim += e->comparison.ssim;
+        row.iou += e->comparison.iou;
+        row.colour_mae += e->comparison.colour_mae;
+        row.wrong_part_rate += e->provenance.WrongPartRate();
+        row.untextured_rate += e->provenance.UntexturedRate();
+        row.reference_iou += e->reference_iou;
         ++row.n;
       }
       if (psnr_frames) row.psnr_db /= psnr_frames;
-      row.ssim /= row.n;
-      row.iou /= row.n;
-      row.colour_mae /= row.n;
+      for (double* mean : {&row.ssim, &row.iou, &row.colour_mae, &row.wrong_part_rate,
+                           &row.untextured_rate, &row.reference_iou})
+        *mean /= row.n;
       row.ms_per_frame = Median(ms);
-      rows.push_back(row);
+      run.rows.push_back(row);
     }
-  return rows;
+    if (options.image_dir.empty()) continue;
+    for (const ImagePair& pair : pairs) {
+      auto e = harness->Evaluate(*method, pair.view_deg, pair.frame);
+      if (!e.ok()) return e.error();
+      const std::string path =
+          (std::filesystem::path(options.image_dir) / ImageName(method->name, pair)).string();
+      const Status written = viewer::WritePng(
+          path,
+          SideBySide(e->truth.color, e->truth.mask, e->rendered.color, e->rendered.subject_mask));
+      if (!written.ok()) return written.error();
+      run.images.push_back(
+          {method->name, pair, path, e->comparison, e->provenance.WrongPartRate()});
+    }
+  }
+  return run;
 }
 
 }  // namespace reenact::eval

@@ -1,25 +1,60 @@
 #pragma once
 // `reenact-eval quality`: capture a synthetic scenario through the real recording pipeline,
-// reenact every frame_step-th frame from orbit viewpoints turned by each angle about the
-// subject's vertical axis, render the ground truth from the very same camera, and compare
-// (image_metrics.h). Methods: "thesis" (Eq. 5 selection, one stored frame for the whole body,
-// Eq. 6-16 mapping). Further methods arrive with the image-quality work.
+// reenact every frame_step-th frame with each method (quality_methods.h) from orbit
+// viewpoints turned by each angle about the subject's vertical axis, render the ground truth
+// from the very same camera, and compare:
+//   - PSNR, SSIM, silhouette IoU, colour error of the GL rendering (image_metrics.h; PSNR
+//     and SSIM over the bounding box of the union of both silhouettes, kCropRule);
+//   - wrong-part rate (part_provenance.h), with provenance from the CPU reference renderer
+//     (common/render/reference_renderer.h) drawing the same draw list; reference_iou, the
+//     silhouette IoU of the two renderings, shows they drew the same thing;
+//   - milliseconds per rendered frame: draw-list build (selection + mapping) + GL draw +
+//     read-back, median over the frames.
+// Output frame k is compared with the scene's frame k; the source frame's part labels are
+// the scene's labels rendered from the sensor at that stored frame (cached).
 
+#include <Eigen/Geometry>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "capture-client/synthetic/synthetic_scene.h"
 #include "common/error/expected.h"
+#include "common/render/reference_renderer.h"
+#include "tests/eval/image_metrics.h"
+#include "tests/eval/part_provenance.h"
+#include "tests/eval/quality_methods.h"
+#include "viewer-client/play/reenactment.h"
+#include "viewer-client/render/renderer.h"
 
 namespace reenact::eval {
 
-struct QualityOptions {
-  std::string scenario = "turn-and-kick";
-  std::vector<std::string> methods = {"thesis"};
-  std::vector<double> views_deg = {0, 30, 60, 90, 135, 180};
-  int frame_step = 10;  // >= 1
-  int width = 640;      // >= 16
-  int height = 480;
+// The crop rule, as printed with every table.
+inline constexpr const char* kCropRule =
+    "PSNR and SSIM over the bounding box of the union of the true and rendered silhouettes, "
+    "each image's subject on black (a missing or extra limb counts, the empty background "
+    "around the box does not)";
 
+// One picture for the docs: output frame `frame` seen from orbit angle `view_deg`.
+struct ImagePair {
+  int frame = 0;
+  double view_deg = 0;
+};
+
+struct QualityOptions {
+  std::string scenario = "turn-and-kick";  // a SyntheticScene scenario name
+  std::vector<std::string> methods = {"thesis"};
+  std::vector<double> views_deg = {0, 30, 60, 90, 135, 180};  // finite
+  int frame_step = 10;  // >= 1: frames 0, step, 2 step, ... are compared
+  int width = 640;      // output size, >= 16 each
+  int height = 480;
+  // Side-by-side pictures (side_by_side.h) as PNG files in image_dir, one per method and
+  // pair; none when image_dir is empty. No pairs given: at every view, the compared frame
+  // nearest the middle of the clip.
+  std::string image_dir;
+  std::vector<ImagePair> image_pairs;  // frames >= 0 (and < the clip's frame count)
+
+  // Throws CheckError when a field is out of range.
   void Check() const;
 };
 
@@ -27,16 +62,77 @@ struct QualityRow {
   std::string method;
   std::string scenario;
   double view_deg = 0;
-  int n = 0;               // frames compared
-  double psnr_db = 0;      // mean over frames with finite PSNR
-  double ssim = 0;
+  int n = 0;           // frames compared
+  double psnr_db = 0;  // mean over frames with finite PSNR
+  double ssim = 0;     // means over the frames
   double iou = 0;
-  double colour_mae = 0;   // 0..255
-  double ms_per_frame = 0; // median: selection + mapping + GL draw + read-back
+  double colour_mae = 0;       // 0..255
+  double wrong_part_rate = 0;  // 0..1
+  double untextured_rate = 0;  // 0..1, share of subject pixels in flat colour
+  double reference_iou = 0;    // GL vs reference silhouette (provenance check)
+  double ms_per_frame = 0;     // median
 };
 
-std::vector<std::string> QualityMethods();
+struct QualityImage {
+  std::string method;
+  ImagePair pair;
+  std::string path;              // the PNG written
+  SubjectComparison comparison;  // of this frame
+  double wrong_part_rate = 0;
+};
 
-Expected<std::vector<QualityRow>> RunQuality(const QualityOptions& options);
+struct QualityRun {
+  std::vector<QualityRow> rows;  // per method, then view
+  std::vector<QualityImage> images;
+  int clip_frames = 0;      // frames captured
+  std::string gl_renderer;  // GL_RENDERER of the headless context
+};
+
+// Everything about one compared frame.
+struct FrameEvaluation {
+  viewer::ReenactedFrame frame;    // the method's draw list
+  viewer::RenderedFrame rendered;  // GL
+  ReferenceRender reference;       // CPU reference of the same draw list
+  capture::SyntheticView truth;    // ground truth from the viewer camera, no room
+  SubjectComparison comparison;    // rendered vs truth
+  PartProvenance provenance;
+  double reference_iou = 0;
+  double ms = 0;  // build + GL draw + read-back
+};
+
+// A captured scenario with a headless renderer: evaluates single frames. Move-only.
+class QualityHarness {
+ public:
+  // Captures options.scenario (record + read back, in a temporary directory) and opens the
+  // headless renderer. Errors: unknown scenario ("not_found", listing the known ones),
+  // recording failures, "gl_unavailable".
+  static Expected<QualityHarness> Create(const QualityOptions& options);
+
+  QualityHarness(QualityHarness&&) noexcept;
+  QualityHarness& operator=(QualityHarness&&) noexcept;
+  ~QualityHarness();
+
+  const viewer::Reenactment& clip() const;
+  const capture::SyntheticScene& scene() const;
+  const PinholeCamera& camera() const;  // the viewer camera (options' size)
+  const std::string& gl_renderer() const;
+
+  // The orbit camera's viewer_from_world at that angle; error "degenerate" if it cannot be
+  // placed.
+  Expected<Eigen::Isometry3d> ViewerFromWorld(double view_deg) const;
+
+  // Output frame k (0 <= k < clip().frame_count(), CHECK) of the method from the view.
+  Expected<FrameEvaluation> Evaluate(const QualityMethod& method, double view_deg, int k);
+
+  struct State;
+
+ private:
+  explicit QualityHarness(std::unique_ptr<State> state);
+  std::unique_ptr<State> state_;
+};
+
+// The whole run. Errors: unknown method ("usage", listing the known ones), the errors of
+// QualityHarness::Create, an image pair out of the clip, an image that cannot be written.
+Expected<QualityRun> RunQuality(const QualityOptions& options);
 
 }  // namespace reenact::eval

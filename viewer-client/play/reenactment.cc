@@ -83,6 +83,7 @@ ReenactedFrame Reenactment::Build(int k, const PinholeCamera& viewer_camera,
       }
     }
     out.draw.cylinders.push_back(draw);
+    out.cylinder_parts.push_back(static_cast<BodyPart>(p));
   }
   for (int p = 0; p < kBodyPartCount; ++p) {
     const auto [ja, jb] = PartJoints(static_cast<BodyPart>(p));

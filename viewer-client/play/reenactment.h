@@ -20,6 +20,8 @@ namespace reenact::viewer {
 
 struct ReenactedFrame {
   FrameDraw draw;
+  // The body part of each draw.cylinders entry, in the same order.
+  std::vector<BodyPart> cylinder_parts;
   int clip_frame = -1;     // k
   int texture_frame = -1;  // n_bar, -1 if no stored frame could be chosen
 };

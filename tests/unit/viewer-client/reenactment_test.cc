@@ -43,6 +43,34 @@ TEST(Reenactment, ViewerAtTheSensorReusesTheSameFrameWithIdentityMapping) {
   }
 }
 
+TEST(Reenactment, NamesTheBodyPartOfEveryCylinderAndSkipsMissingParts) {
+  proto::ClipManifest manifest;
+  manifest.color_camera = PinholeCamera::KinectLike();
+  manifest.radius_ratio = DefaultRadiusRatios();
+  proto::ClipFrame f;
+  f.skeleton_in_world = testing::StandingPerson(3.0, 0, true);
+  f.skeleton_in_world.confidence[Index(Joint::kLeftElbow)] = 0;  // no left upper arm, forearm
+  f.color = ImageRgb8(4, 4, 3, 100);
+  f.depth = ImageDepthMm(4, 4, 1, 3000);
+  f.mask = ImageGray8(4, 4, 1, 255);
+  manifest.frame_count = 1;
+  const Reenactment r(manifest, {f});
+  const ReenactedFrame out = r.Build(0, PinholeCamera::KinectLike(), Eigen::Isometry3d::Identity(),
+                                     [](int n) { return n; });
+  ASSERT_EQ(out.cylinder_parts.size(), out.draw.cylinders.size());
+  ASSERT_EQ(out.cylinder_parts.size(), static_cast<size_t>(kBodyPartCount - 2));
+  for (size_t i = 0; i < out.cylinder_parts.size(); ++i) {
+    const BodyPart p = out.cylinder_parts[i];
+    EXPECT_NE(p, BodyPart::kLeftUpperArm);
+    EXPECT_NE(p, BodyPart::kLeftForearm);
+    // The cylinder's axis runs between the part's own joints (world = viewer here).
+    const auto [ja, jb] = PartJoints(p);
+    const CylinderDraw& c = out.draw.cylinders[i];
+    EXPECT_LT((c.a - f.skeleton_in_world[ja]).norm(), 1e-12) << PartName(p);
+    EXPECT_LT((c.b - f.skeleton_in_world[jb]).norm(), 1e-12) << PartName(p);
+  }
+}
+
 TEST(Reenactment, ViewerBehindTheSubjectSeesTheFrameTurnedHalfWay) {
   const Reenactment r = TurningClip();
   // Viewer on the far side: turned 180 degrees about the vertical (-y) axis through the

@@ -1,0 +1,172 @@
+// The quality harness on a short run, in CI (`make test`): turn-and-kick captured through the
+// real recording pipeline, frames 0, 45, 90 and 135 reenacted by the thesis method from 0 and
+// 90 degrees. The bounds follow from how the scene and the method are built (see each
+// comment), not from an earlier run. Needs OpenGL (EGL surfaceless); suites start with "Gl".
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "tests/eval/quality_eval.h"
+#include "tests/eval/quality_report.h"
+
+namespace reenact::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kStep = 45;  // frames 0, 45, 90, 135 of 180
+
+QualityOptions ShortRun() {
+  QualityOptions options;
+  options.scenario = "turn-and-kick";
+  options.views_deg = {0, 90};
+  options.frame_step = kStep;
+  return options;
+}
+
+QualityHarness& Harness() {
+  static QualityHarness harness = [] {
+    auto h = QualityHarness::Create(ShortRun());
+    if (!h.ok()) throw std::runtime_error(h.error().message);
+    return std::move(h).value();
+  }();
+  return harness;
+}
+
+const QualityMethod& Thesis() { return **FindQualityMethod("thesis"); }
+
+// PSNR of an empty (black, no subject) rendering against the same ground truth under the
+// same crop rule: the floor any reenactment must clear.
+double EmptyImagePsnr(const capture::SyntheticView& truth) {
+  const ImageRgb8 black(truth.color.width, truth.color.height, 3, 0);
+  const ImageGray8 none(truth.color.width, truth.color.height, 1, 0);
+  return CompareSubject(black, none, truth.color, truth.mask).psnr_db;
+}
+
+TEST(GlQualityEval, AtZeroDegreesTheThesisRerendersTheCapturedView) {
+  QualityHarness& h = Harness();
+  int same_frame = 0;
+  for (int k = 0; k < h.clip().frame_count(); k += kStep) {
+    const auto e = h.Evaluate(Thesis(), 0, k);
+    ASSERT_TRUE(e.ok()) << e.error().message;
+    const int w = h.camera().width, hgt = h.camera().height;
+
+    // The synthetic skeleton is complete in every frame and every frame shows the subject,
+    // so every cylinder is textured from a stored frame.
+    EXPECT_EQ(e->provenance.UntexturedRate(), 0.0) << "k " << k;
+    EXPECT_GT(e->provenance.subject_pixels, 5000) << "k " << k;
+    // GL and its CPU oracle draw the same list (their agreement test's bound): the
+    // provenance describes the measured picture.
+    EXPECT_GE(e->reference_iou, 0.98) << "k " << k;
+
+    // The silhouette depends only on the posed cylinders: the exact skeleton, radii fitted
+    // to this subject's own masks. They cover the trunk and limbs and miss only where the
+    // body is not a cylinder (hands, feet, shoulders, hair), so well over half the union
+    // is shared; a silhouette off by a limb's width would fall far below.
+    EXPECT_GT(e->comparison.iou, 0.6) << "k " << k;
+
+    // At 0 degrees the viewer stands where the sensor stood, so the stored view is
+    // re-rendered from the same pixels: colour errors only from JPEG, resampling and the
+    // silhouette mismatch. An empty image errs on every subject pixel at full intensity.
+    // Halving the mean squared error is +3 dB.
+    EXPECT_GT(e->comparison.psnr_db, EmptyImagePsnr(e->truth) + 3.0) << "k " << k;
+
+    // When Eq. 5 picks frame k itself, the mapping (Eq. 6-16 onto the same cylinders) takes
+    // every surface point to itself, and viewer and sensor share their centre: each pixel
+    // samples the stored frame along its own ray, where the sensor saw what the ground truth
+    // shows at that pixel. So the wrong-part rate must equal the share of rendered pixels
+    // whose cylinder's part differs from the true label at the pixel itself, computed here
+    // from the ground truth alone (up to bilinear blending across label borders).
+    if (e->frame.texture_frame != k) continue;
+    ++same_frame;
+    int subject = 0, disagree = 0;
+    for (int y = 0; y < hgt; ++y)
+      for (int x = 0; x < w; ++x) {
+        const int part = e->reference.part.at(x, y);
+        if (part < 0) continue;
+        ++subject;
+        disagree += e->truth.part_labels.at(x, y) != PartLabel(e->frame.cylinder_parts[part]);
+      }
+    const double expected = static_cast<double>(disagree) / subject;
+    EXPECT_NEAR(e->provenance.WrongPartRate(), expected, 0.015) << "k " << k;
+    // And it is low: a cylinder covers another part only where neighbours meet at a joint
+    // or a limb crosses the trunk.
+    EXPECT_LT(e->provenance.WrongPartRate(), 0.2) << "k " << k;
+  }
+  // Frame k's own skeleton matches the viewer's exactly up to the re-aiming of the camera,
+  // so Eq. 5 picks it for most frames.
+  EXPECT_GE(same_frame, 3);
+}
+
+TEST(GlQualityEval, ShortRunWritesRowsPicturesAndMarkdown) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("reenact-gl-quality-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  QualityOptions options = ShortRun();
+  options.image_dir = (dir / "pics").string();
+  options.image_pairs = {{90, 90}};
+  const auto run = RunQuality(options);
+  ASSERT_TRUE(run.ok()) << run.error().message;
+  EXPECT_EQ(run->clip_frames, 180);
+  ASSERT_EQ(run->rows.size(), 2u);
+  for (const QualityRow& r : run->rows) {
+    EXPECT_EQ(r.method, "thesis");
+    EXPECT_EQ(r.n, 4);
+    // Silhouettes depend on the pose only, not on the view's texture choice (see above).
+    EXPECT_GT(r.iou, 0.6) << r.view_deg;
+    EXPECT_GE(r.reference_iou, 0.98) << r.view_deg;
+    EXPECT_GE(r.wrong_part_rate, 0.0);
+    EXPECT_LE(r.wrong_part_rate, 1.0);
+    EXPECT_TRUE(std::isfinite(r.psnr_db));
+    EXPECT_GT(r.ms_per_frame, 0.0);
+  }
+  EXPECT_EQ(run->rows[0].view_deg, 0.0);
+  EXPECT_EQ(run->rows[1].view_deg, 90.0);
+
+  // The picture: three panels of the comparison box side by side (side_by_side.h).
+  ASSERT_EQ(run->images.size(), 1u);
+  const cv::Mat png = cv::imread(run->images[0].path, cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(png.empty()) << run->images[0].path;
+  EXPECT_EQ(png.channels(), 3);
+  EXPECT_EQ((png.cols - 2 * 4) % 3, 0);
+  EXPECT_LE(png.rows, 480);
+  EXPECT_GT(png.rows, 100);  // a standing person seen from 3 m fills a good part of the height
+
+  // The markdown: the table, the crop rule and a link to the picture relative to the file.
+  const std::string md_path = (dir / "quality.md").string();
+  const std::string md = QualityMarkdown(options, *run, md_path, MachineLine(run->gl_renderer));
+  EXPECT_NE(md.find("| thesis | 90 | 4 |"), std::string::npos) << md;
+  EXPECT_NE(md.find(kCropRule), std::string::npos);
+  EXPECT_NE(md.find("](pics/thesis_f090_v090.png)"), std::string::npos) << md;
+  ASSERT_TRUE(WriteTextFile(md_path, md).ok());
+  std::ifstream in(md_path);
+  std::stringstream back;
+  back << in.rdbuf();
+  EXPECT_EQ(back.str(), md);
+  fs::remove_all(dir);
+}
+
+TEST(GlQualityEval, ImagePairBeyondTheClipIsRefused) {
+  QualityOptions options = ShortRun();
+  options.views_deg = {0};
+  options.image_dir =
+      (fs::temp_directory_path() / ("reenact-gl-quality-bad-" + std::to_string(::getpid())))
+          .string();
+  options.image_pairs = {{180, 0}};  // frames are 0..179
+  const auto run = RunQuality(options);
+  ASSERT_FALSE(run.ok());
+  EXPECT_EQ(run.error().code, "usage");
+  EXPECT_NE(run.error().message.find("image frame 180 is beyond the clip's 180 frames"),
+            std::string::npos)
+      << run.error().message;
+  EXPECT_FALSE(fs::exists(options.image_dir));  // refused before anything is written
+}
+
+}  // namespace
+}  // namespace reenact::eval

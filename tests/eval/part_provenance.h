@@ -1,0 +1,63 @@
+#pragma once
+// The wrong-part rate of a reenacted frame: which share of the rendered subject's colour was
+// taken from source pixels that the source frame's ground-truth part labels assign to another
+// body part or to the background (the thesis's doubled-limb failure: a forearm textured with
+// torso pixels, a leg with the other leg's).
+//
+// Provenance is exact: it is read from the CPU reference renderer's per-pixel output for the
+// draw list (common/render/reference_renderer.h): `part` (index of the cylinder that drew the
+// pixel), `source_frame` and `source_pixel` (u, v) in the stored crop's pixels. The colour at
+// (u, v) is the renderer's bilinear blend of the four nearest texels (clamped to the crop's
+// edge) whose crop mask is >= 128 (alpha 1), each weighted by its bilinear weight w_i and
+// normalised by their sum. A pixel's wrong share is
+//   sum_i w_i [label_i != PartLabel(part of the cylinder)] / sum_i w_i    (over alpha-1 texels)
+// with label_i the source frame's label image at the texel's sensor pixel (crop pixel +
+// the crop's offset; 0 = background outside the label image). A pixel sampled wholly from
+// the right part counts 0, wholly from another part 1, half-way across a border 1/2.
+//
+//   wrong_part_rate = sum of wrong shares / subject pixels
+//
+// Subject pixels are all pixels the reference render marks (mask 255); a pixel drawn in a
+// part's flat colour (no stored frame: untextured) took no colour from any source pixel and
+// counts as subject but never as wrong; their share is reported as untextured_rate.
+
+#include <functional>
+#include <span>
+
+#include "common/image/image.h"
+#include "common/render/reference_renderer.h"
+#include "common/skeleton/skeleton.h"
+
+namespace reenact::eval {
+
+// What the renderer sampled from one stored frame, and its ground-truth labels.
+struct SourceLabels {
+  const ImageGray8* crop_mask = nullptr;  // the crop's mask as uploaded (>= 128 = alpha 1)
+  int crop_x = 0;                         // the crop's top-left pixel in the sensor image
+  int crop_y = 0;
+  const ImageLabel8* labels = nullptr;  // the sensor image's part labels (PartLabel or 0)
+};
+
+struct PartProvenance {
+  int subject_pixels = 0;   // pixels the reference render marks as subject
+  int textured_pixels = 0;  // of those, coloured from a stored frame
+  double wrong_pixels = 0;  // sum of the textured pixels' wrong shares
+  double WrongPartRate() const { return subject_pixels ? wrong_pixels / subject_pixels : 0.0; }
+  double UntexturedRate() const {
+    return subject_pixels ? 1.0 - static_cast<double>(textured_pixels) / subject_pixels : 0.0;
+  }
+};
+
+// The wrong share of one sample at crop pixel (u, v) for the expected label (see above);
+// 0 when no texel there has alpha 1 (the renderer would have discarded the fragment).
+double WrongShareOfSample(const SourceLabels& source, double u, double v, int expected_label);
+
+// Sums the wrong shares over a reference render. cylinder_parts[i] is the body part of the
+// render's part index i; source(n) gives stored frame n's crop mask and labels (called once
+// per textured pixel; it may cache). Preconditions (CHECK): every part index in the render
+// is < cylinder_parts.size(); source(n) returns non-null images for every source frame.
+PartProvenance MeasurePartProvenance(const ReferenceRender& render,
+                                     std::span<const BodyPart> cylinder_parts,
+                                     const std::function<SourceLabels(int frame)>& source);
+
+}  // namespace reenact::eval

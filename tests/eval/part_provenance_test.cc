@@ -1,0 +1,141 @@
+#include "tests/eval/part_provenance.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "common/error/check.h"
+
+namespace reenact::eval {
+namespace {
+
+constexpr int kTorso = PartLabel(BodyPart::kUpperTorso);
+constexpr int kArm = PartLabel(BodyPart::kLeftForearm);
+
+// A 4x3 crop at (10, 20) of a 40x30 sensor image: labels arm in sensor columns < 12 (crop
+// columns 0, 1), torso from column 12 on; crop row 2 is off the subject's mask.
+struct Fixture {
+  ImageGray8 mask{4, 3, 1, 255};
+  ImageLabel8 labels{40, 30, 1, 0};
+  Fixture() {
+    for (int x = 0; x < 4; ++x) mask.at(x, 2) = 0;
+    for (int y = 0; y < 30; ++y)
+      for (int x = 0; x < 40; ++x) labels.at(x, y) = x < 12 ? kArm : kTorso;
+  }
+  SourceLabels source() const { return {&mask, 10, 20, &labels}; }
+};
+
+TEST(PartProvenance, TexelCentresCountWhollyRightOrWrong) {
+  const Fixture f;
+  EXPECT_DOUBLE_EQ(WrongShareOfSample(f.source(), 0, 0, kArm), 0.0);
+  EXPECT_DOUBLE_EQ(WrongShareOfSample(f.source(), 1, 1, kArm), 0.0);
+  EXPECT_DOUBLE_EQ(WrongShareOfSample(f.source(), 2, 0, kArm), 1.0);
+  EXPECT_DOUBLE_EQ(WrongShareOfSample(f.source(), 2, 0, kTorso), 0.0);
+}
+
+TEST(PartProvenance, SamplesAcrossABorderSplitByBilinearWeight) {
+  const Fixture f;
+  // Between crop columns 1 (arm) and 2 (torso): the torso texels weigh t.
+  EXPECT_NEAR(WrongShareOfSample(f.source(), 1.5, 0.5, kArm), 0.5, 1e-12);
+  EXPECT_NEAR(WrongShareOfSample(f.source(), 1.25, 0, kArm), 0.25, 1e-12);
+  EXPECT_NEAR(WrongShareOfSample(f.source(), 1.75, 0.3, kTorso), 0.25, 1e-12);
+}
+
+TEST(PartProvenance, TexelsOffTheMaskGiveNoColourAndAreLeftOut) {
+  const Fixture f;
+  // Rows 1 (subject) and 2 (off the mask) at column 1.5: only row 1's two texels count,
+  // renormalised, whatever the vertical weight.
+  EXPECT_NEAR(WrongShareOfSample(f.source(), 1.5, 1.9, kArm), 0.5, 1e-12);
+  // Wholly off the mask: the renderer discards such a fragment; nothing is wrong.
+  EXPECT_DOUBLE_EQ(WrongShareOfSample(f.source(), 1, 2, kArm), 0.0);
+}
+
+TEST(PartProvenance, BackgroundLabelsAndLabelsOutsideTheImageAreWrong) {
+  Fixture f;
+  f.labels.at(10, 20) = kBackgroundLabel;  // crop texel (0, 0)
+  EXPECT_DOUBLE_EQ(WrongShareOfSample(f.source(), 0, 0, kArm), 1.0);
+  // A crop lying partly outside a (smaller) label image: texels there read background.
+  const ImageLabel8 small(11, 30, 1, kArm);  // sensor columns 0..10 only
+  const SourceLabels s{&f.mask, 10, 20, &small};
+  EXPECT_DOUBLE_EQ(WrongShareOfSample(s, 0, 1, kArm), 0.0);
+  EXPECT_DOUBLE_EQ(WrongShareOfSample(s, 1, 1, kArm), 1.0);
+}
+
+TEST(PartProvenance, SamplesBeyondTheCropEdgeClampToIt) {
+  const Fixture f;
+  EXPECT_DOUBLE_EQ(WrongShareOfSample(f.source(), -0.5, 0, kArm), 0.0);
+  EXPECT_DOUBLE_EQ(WrongShareOfSample(f.source(), 3.5, 0, kTorso), 0.0);
+}
+
+// The reference renderer's own provenance: a cap seen head-on through an identity
+// stored_from_viewer samples the crop at the very pixel it covers, so exactly the cap pixels
+// right of the label border are wrong; a flat-coloured part adds subject pixels, none wrong.
+TEST(PartProvenance, MeasuresAReferenceRenderPixelByPixel) {
+  const PinholeCamera camera{160, 120, 200, 200, 80.3, 60.7, {}};
+  ReferenceCrop crop;
+  crop.color = ImageRgb8(100, 80, 3, 128);
+  crop.mask = ImageGray8(100, 80, 1, 255);
+  crop.camera = camera.Cropped(40, 20, 100, 80);
+  ImageLabel8 labels(160, 120, 1, 0);
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 160; ++x) labels.at(x, y) = x < 84 ? kArm : kTorso;
+
+  std::vector<ReferencePart> parts(2);
+  parts[0].cylinder = Cylinder{{0.02, -0.01, 1.0}, {0.02, -0.01, 1.5}, 0.15};  // cap r = 30 px
+  parts[0].crop = &crop;
+  parts[0].stored_frame = 5;
+  parts[1].cylinder = Cylinder{{-0.35, -0.2, 1.0}, {-0.35, -0.2, 1.5}, 0.02};  // flat, apart
+  const ReferenceRender render = RenderReference(camera, parts);
+  const std::vector<BodyPart> cylinder_parts = {BodyPart::kLeftForearm, BodyPart::kHead};
+
+  int cap = 0, right_of_border = 0, flat = 0;
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 160; ++x) {
+      if (render.part.at(x, y) == 0) {
+        ++cap;
+        right_of_border += x >= 84;
+      }
+      flat += render.part.at(x, y) == 1;
+    }
+  ASSERT_GT(cap, 2500);
+  ASSERT_GT(right_of_border, 500);
+  ASSERT_GT(flat, 10);
+
+  int calls = 0;
+  const PartProvenance p =
+      MeasurePartProvenance(render, cylinder_parts, [&](int frame) -> SourceLabels {
+        EXPECT_EQ(frame, 5);
+        ++calls;
+        return {&crop.mask, 40, 20, &labels};
+      });
+  EXPECT_EQ(p.subject_pixels, cap + flat);
+  EXPECT_EQ(p.textured_pixels, cap);
+  EXPECT_EQ(calls, cap);
+  // Samples land on texel centres up to float rounding of source_pixel (< 1e-4 px).
+  EXPECT_NEAR(p.wrong_pixels, right_of_border, 1e-3 * cap);
+  EXPECT_NEAR(p.WrongPartRate(), static_cast<double>(right_of_border) / (cap + flat), 1e-5);
+  EXPECT_NEAR(p.UntexturedRate(), static_cast<double>(flat) / (cap + flat), 1e-12);
+}
+
+TEST(PartProvenance, EmptyRenderHasZeroRates) {
+  ReferenceRender render;
+  render.mask = ImageGray8(8, 8, 1, 0);
+  const PartProvenance p = MeasurePartProvenance(render, {}, [](int) { return SourceLabels{}; });
+  EXPECT_EQ(p.subject_pixels, 0);
+  EXPECT_DOUBLE_EQ(p.WrongPartRate(), 0.0);
+  EXPECT_DOUBLE_EQ(p.UntexturedRate(), 0.0);
+}
+
+TEST(PartProvenance, PartIndexWithoutABodyPartIsRejected) {
+  const Fixture f;
+  ReferenceRender render;
+  render.mask = ImageGray8(1, 1, 1, 255);
+  render.part = Image<int32_t>(1, 1, 1, 3);
+  render.source_frame = Image<int32_t>(1, 1, 1, 0);
+  render.source_pixel = Image<float>(1, 1, 2, 0.0f);
+  const std::vector<BodyPart> two = {BodyPart::kHead, BodyPart::kUpperTorso};
+  EXPECT_THROW(MeasurePartProvenance(render, two, [&](int) { return f.source(); }), CheckError);
+}
+
+}  // namespace
+}  // namespace reenact::eval

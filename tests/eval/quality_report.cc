@@ -1,0 +1,178 @@
+#include "tests/eval/quality_report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+namespace reenact::eval {
+namespace {
+
+std::string Fixed(double value, int decimals) {
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
+  return text;
+}
+
+std::string Number(double value) {  // shortest form for command lines: 30, 22.5
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+std::string EveryKth(int k) {
+  if (k == 1) return "every frame";
+  const int last = k % 10, tens = k % 100;
+  const char* suffix = (tens >= 11 && tens <= 13) ? "th"
+                       : last == 1                ? "st"
+                       : last == 2                ? "nd"
+                       : last == 3                ? "rd"
+                                                  : "th";
+  return "every " + std::to_string(k) + suffix + " frame";
+}
+
+std::string CpuModel() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0) {
+      const size_t colon = line.find(':');
+      if (colon != std::string::npos && colon + 2 <= line.size()) return line.substr(colon + 2);
+    }
+  return "unknown CPU";
+}
+
+}  // namespace
+
+proto::Report QualityReport(const QualityRun& run) {
+  proto::Report report{"quality", {}};
+  for (const QualityRow& r : run.rows)
+    report.rows.push_back(proto::ReportRow{}
+                              .Add("method", r.method)
+                              .Add("scenario", r.scenario)
+                              .Add("view_deg", r.view_deg)
+                              .Add("n", static_cast<long long>(r.n))
+                              .Add("psnr_db", r.psnr_db)
+                              .Add("ssim", r.ssim)
+                              .Add("iou", r.iou)
+                              .Add("colour_mae", r.colour_mae)
+                              .Add("wrong_part_rate", r.wrong_part_rate)
+                              .Add("untextured_rate", r.untextured_rate)
+                              .Add("reference_iou", r.reference_iou)
+                              .Add("ms_per_frame", r.ms_per_frame));
+  return report;
+}
+
+std::vector<std::string> QualityRules() {
+  return {
+      std::string("Crop rule: ") + kCropRule + ".",
+      "iou: silhouette IoU of the rendered and true subject masks; colour_mae: mean absolute "
+      "RGB difference (0-255) where both masks are set.",
+      "wrong_part_rate: share of rendered subject pixels whose colour came from source pixels "
+      "that the source frame's ground-truth part labels assign to another body part or to the "
+      "background (a pixel blended across a border counts by its bilinear weights); "
+      "untextured_rate: share drawn in flat colour, from no source pixel.",
+      "Provenance (source frame, source pixel, cylinder part) comes from the CPU reference "
+      "renderer drawing the same draw list as the GL renderer; reference_iou is the IoU of "
+      "their two silhouettes.",
+      "ms_per_frame: median over the frames of draw-list build (selection + mapping) + GL draw "
+      "+ read-back on the headless context.",
+  };
+}
+
+std::string QualityCommandLine(const QualityOptions& options) {
+  std::ostringstream line;
+  line << "reenact-eval quality --scenario " << options.scenario << " --methods ";
+  for (size_t i = 0; i < options.methods.size(); ++i) line << (i ? "," : "") << options.methods[i];
+  line << " --views ";
+  for (size_t i = 0; i < options.views_deg.size(); ++i)
+    line << (i ? "," : "") << Number(options.views_deg[i]);
+  line << " --step " << options.frame_step;
+  if (!options.image_dir.empty() && !options.image_pairs.empty()) {
+    line << " --images " << options.image_dir << " --image-pairs ";
+    for (size_t i = 0; i < options.image_pairs.size(); ++i)
+      line << (i ? "," : "") << options.image_pairs[i].frame << "@"
+           << Number(options.image_pairs[i].view_deg);
+  }
+  return line.str();
+}
+
+std::string MachineLine(const std::string& gl_renderer) {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char date[32];
+  std::strftime(date, sizeof(date), "%Y-%m-%d", &utc);
+  return std::string(date) + " (UTC), " + CpuModel() + ", " +
+         std::to_string(std::thread::hardware_concurrency()) + " logical cores, OpenGL renderer " +
+         gl_renderer;
+}
+
+std::string QualityMarkdown(const QualityOptions& options, const QualityRun& run,
+                            const std::string& markdown_path, const std::string& machine_line) {
+  std::ostringstream md;
+  md << "# Image quality against ground truth\n\n"
+     << "Written by `reenact-eval quality` (`make eval` runs the standard set); do not edit by "
+        "hand. To reproduce:\n\n```\n"
+     << QualityCommandLine(options) << "\n```\n\n"
+     << "Measured " << machine_line << ".\n\n"
+     << "Synthetic scenario `" << options.scenario << "`: " << run.clip_frames
+     << " frames recorded through the real capture pipeline (render, crop, JPEG/PNG, clip "
+        "directory) and read back; "
+     << EveryKth(options.frame_step) << " is reenacted at " << options.width << "x"
+     << options.height
+     << " from viewpoints turned by view_deg about the subject's vertical axis from the "
+        "sensor's position at frame 0, and compared with the scene rendered from the same camera "
+        "(subject only, no room). Figures are means over the frames.\n\n"
+     << "Methods:\n\n";
+  for (const std::string& name : options.methods)
+    if (auto m = FindQualityMethod(name); m.ok())
+      md << "- `" << name << "`: " << (*m)->summary << ".\n";
+  md << "\n| method | view_deg | n | psnr_db | ssim | iou | colour_mae | wrong_part_rate | "
+        "untextured_rate | reference_iou | ms_per_frame |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const QualityRow& r : run.rows)
+    md << "| " << r.method << " | " << Number(r.view_deg) << " | " << r.n << " | "
+       << Fixed(r.psnr_db, 2) << " | " << Fixed(r.ssim, 3) << " | " << Fixed(r.iou, 3) << " | "
+       << Fixed(r.colour_mae, 1) << " | " << Fixed(r.wrong_part_rate, 3) << " | "
+       << Fixed(r.untextured_rate, 3) << " | " << Fixed(r.reference_iou, 4) << " | "
+       << Fixed(r.ms_per_frame, 1) << " |\n";
+  md << "\nHow the figures are made:\n\n";
+  for (const std::string& rule : QualityRules()) md << "- " << rule << "\n";
+
+  if (!run.images.empty()) {
+    md << "\n## Pictures\n\n"
+       << "Each picture: ground truth | reenactment | per-pixel error, cropped to the "
+          "comparison box (grown by 8 px), subjects on black as compared. Error: mean absolute "
+          "RGB difference on the inferno scale, black 0 to bright yellow at 128 and above.\n";
+    const std::filesystem::path base =
+        std::filesystem::absolute(markdown_path).lexically_normal().parent_path();
+    for (const QualityImage& image : run.images) {
+      const std::string link = std::filesystem::absolute(image.path)
+                                   .lexically_normal()
+                                   .lexically_relative(base)
+                                   .generic_string();
+      md << "\n`" << image.method << "`, frame " << image.pair.frame << ", view "
+         << Number(image.pair.view_deg) << " degrees: PSNR " << Fixed(image.comparison.psnr_db, 2)
+         << " dB, SSIM " << Fixed(image.comparison.ssim, 3) << ", IoU "
+         << Fixed(image.comparison.iou, 3) << ", wrong-part rate "
+         << Fixed(image.wrong_part_rate, 3) << "\n\n"
+         << "![" << image.method << " frame " << image.pair.frame << " view "
+         << Number(image.pair.view_deg) << "](" << link << ")\n";
+    }
+  }
+  return md.str();
+}
+
+Status WriteTextFile(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.close();
+  if (!out) return MakeError("io", "cannot write " + path + " (is the folder there and writable?)");
+  return {};
+}
+
+}  // namespace reenact::eval

@@ -1,0 +1,35 @@
+#pragma once
+// The results of `reenact-eval quality` for people: the report of DESIGN.md (table on stdout,
+// --json FILE with the field names psnr_db, ssim, iou, wrong_part_rate, ms_per_frame, ...)
+// and a markdown document (--markdown FILE; `make eval` writes docs/quality.md) with the
+// table, the measurement rules, the machine and the side-by-side pictures.
+
+#include <string>
+
+#include "common/error/expected.h"
+#include "proto/report/report_table.h"
+#include "tests/eval/quality_eval.h"
+
+namespace reenact::eval {
+
+// One row per method and view.
+proto::Report QualityReport(const QualityRun& run);
+
+// The rules behind the figures, one line each (crop rule, wrong-part rule, provenance,
+// timing), printed under the table and written into the markdown.
+std::vector<std::string> QualityRules();
+
+// The reenact-eval command line that reproduces the options' figures.
+std::string QualityCommandLine(const QualityOptions& options);
+
+// "YYYY-MM-DD (UTC), CPU model, N logical cores, OpenGL renderer R": when and where.
+std::string MachineLine(const std::string& gl_renderer);
+
+// The markdown document; image links relative to the document's folder (markdown_path).
+std::string QualityMarkdown(const QualityOptions& options, const QualityRun& run,
+                            const std::string& markdown_path, const std::string& machine_line);
+
+// Writes text to path (replacing it). Error "io" naming the path.
+Status WriteTextFile(const std::string& path, const std::string& text);
+
+}  // namespace reenact::eval

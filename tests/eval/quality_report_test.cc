@@ -1,0 +1,77 @@
+#include "tests/eval/quality_report.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <limits>
+
+namespace reenact::eval {
+namespace {
+
+QualityRun TwoRows() {
+  QualityRun run;
+  run.clip_frames = 180;
+  QualityRow a{"thesis", "turn-and-kick", 0, 18,      22.674, 0.8831, 0.8342,
+               5.71,     0.0571,          0, 0.99996, 4.13};
+  QualityRow b = a;
+  b.view_deg = 22.5;
+  b.psnr_db = std::numeric_limits<double>::infinity();
+  run.rows = {a, b};
+  return run;
+}
+
+TEST(QualityReport, JsonRowsCarryTheDesignFieldNames) {
+  const std::string json = QualityReport(TwoRows()).ToJson();
+  for (const char* field : {"\"method\"", "\"scenario\"", "\"view_deg\"", "\"n\"", "\"psnr_db\"",
+                            "\"ssim\"", "\"iou\"", "\"wrong_part_rate\"", "\"ms_per_frame\""})
+    EXPECT_NE(json.find(field), std::string::npos) << field;
+}
+
+TEST(QualityReport, MarkdownHasTheTableTheRulesAndTheCommand) {
+  QualityOptions options;
+  options.views_deg = {0, 22.5};
+  options.frame_step = 3;
+  const std::string md = QualityMarkdown(options, TwoRows(), "docs/quality.md", "MACHINE");
+  EXPECT_NE(md.find("| thesis | 0 | 18 | 22.67 | 0.883 | 0.834 | 5.7 | 0.057 | 0.000 | 1.0000 | "
+                    "4.1 |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| thesis | 22.5 | 18 | inf |"), std::string::npos) << md;
+  EXPECT_NE(md.find(kCropRule), std::string::npos);
+  EXPECT_NE(md.find("wrong_part_rate: share of rendered subject pixels"), std::string::npos);
+  EXPECT_NE(md.find("Measured MACHINE."), std::string::npos);
+  EXPECT_NE(md.find("every 3rd frame"), std::string::npos);
+  EXPECT_NE(md.find("reenact-eval quality --scenario turn-and-kick --methods thesis --views "
+                    "0,22.5 --step 3"),
+            std::string::npos)
+      << md;
+  EXPECT_EQ(md.find("## Pictures"), std::string::npos);  // none taken
+}
+
+TEST(QualityReport, PictureLinksAreRelativeToTheDocument) {
+  QualityRun run = TwoRows();
+  run.images.push_back({"thesis", {90, 60}, "docs/quality/thesis_f090_v060.png", {}, 0.1});
+  const std::string md = QualityMarkdown(QualityOptions{}, run, "docs/quality.md", "M");
+  EXPECT_NE(md.find("](quality/thesis_f090_v060.png)"), std::string::npos) << md;
+  EXPECT_NE(md.find("frame 90, view 60 degrees"), std::string::npos) << md;
+}
+
+TEST(QualityReport, MachineLineNamesDateCoresAndRenderer) {
+  const std::string line = MachineLine("llvmpipe");
+  EXPECT_EQ(line.substr(4, 1), "-");  // YYYY-MM-DD first
+  EXPECT_NE(line.find("logical cores"), std::string::npos);
+  EXPECT_NE(line.find("OpenGL renderer llvmpipe"), std::string::npos);
+}
+
+TEST(QualityReport, UnwritableMarkdownFileIsAnIoError) {
+  const std::string path = std::filesystem::temp_directory_path() /
+                           ("reenact-no-such-dir-" + std::to_string(::getpid())) / "q.md";
+  const Status s = WriteTextFile(path, "x");
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.error().code, "io");
+  EXPECT_NE(s.error().message.find(path), std::string::npos);
+}
+
+}  // namespace
+}  // namespace reenact::eval
