@@ -46,7 +46,7 @@ struct TextureGraphIndexOptions {
 };
 
 struct TextureGraphSearch {
-  int beam = 32;  // candidates kept on layer 0 (ef), >= 1; at least top_k are kept
+  int beam = 48;  // candidates kept on layer 0 (ef), >= 1; at least top_k are kept
 
   void Check() const;
 };
