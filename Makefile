@@ -25,7 +25,10 @@ demo: build
 
 # The standard quality set: the table, the rules, the machine and a few side-by-side pictures
 # (ground truth | reenactment | error) in docs/quality.md and docs/quality/.
-EVAL_ARGS ?= --scenario turn-and-kick --methods thesis --views 0,30,60,90,135,180 --step 10 \
+# The subject is the skinned CesiumMan of the shared data (a realistic body, not cylinders).
+SHARED_DATA ?= ../shared/data
+EVAL_ARGS ?= --scenario turn-and-kick --body $(SHARED_DATA)/models/CesiumMan.glb \
+             --methods thesis --views 0,30,60,90,135,180 --step 10 \
              --image-pairs 90@0,90@90,135@60,165@180
 eval: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS) --target reenact-eval

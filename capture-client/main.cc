@@ -16,7 +16,12 @@ constexpr const char* kUsage =
     "usage:\n"
     "  reenact-capture record --source SRC --out DIR [--frames N] [--skeleton source]\n"
     "                         [--title S] [--author S]\n"
-    "      SRC: synthetic:SCENARIO | oni:FILE | openni[:URI] | tum:DIR | clip:DIR\n"
+    "      SRC: synthetic:SCENARIO[?body=FILE.glb[&body_height=M]] | oni:FILE |\n"
+    "           openni[:URI] | tum:DIR | clip:DIR\n"
+    "      SCENARIO: turn-and-kick | walk-handheld (moving sensor) | calibration |\n"
+    "                model-walk | bvh:FILE.bvh   (model-walk and bvh: need body=)\n"
+    "      body=FILE.glb: a glTF skinned mesh (e.g. ../shared/data/models/CesiumMan.glb)\n"
+    "                instead of the procedural body; body_height=M scales it\n"
     "  reenact-capture info DIR\n"
     "  reenact-capture publish DIR --server URL --token T --lat DEG --lon DEG [--alt M]\n"
     "                          [--accuracy M] [--title S]\n";

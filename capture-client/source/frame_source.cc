@@ -1,6 +1,9 @@
 #include "capture-client/source/frame_source.h"
 
+#include "capture-client/source/clip_source.h"
+#include "capture-client/source/openni_source.h"
 #include "capture-client/source/synthetic_source.h"
+#include "capture-client/source/tum_source.h"
 
 namespace reenact::capture {
 
@@ -8,16 +11,18 @@ Expected<std::unique_ptr<FrameSource>> OpenFrameSource(const std::string& spec) 
   const auto colon = spec.find(':');
   const std::string kind = spec.substr(0, colon);
   const std::string arg = colon == std::string::npos ? "" : spec.substr(colon + 1);
-  if (kind == "synthetic") {
-    if (arg.empty())
-      return MakeError("usage", "--source synthetic:SCENARIO needs a scenario name, e.g. "
-                                "synthetic:turn-and-kick");
-    return SyntheticSource::Open(arg);
+  if (kind == "synthetic") return SyntheticSource::OpenSpec(arg);
+  if (kind == "oni") return OpenNiSource::OpenFileSpec(arg);
+  if (kind == "openni") return OpenNiSource::OpenDeviceSpec(arg);
+  if (kind == "tum") {
+    auto tum = TumSource::OpenSpec(arg);
+    if (!tum.ok()) return tum.error();
+    return std::unique_ptr<FrameSource>(std::move(tum).value());
   }
-  if (kind == "oni" || kind == "openni" || kind == "tum" || kind == "clip")
-    return MakeError("unsupported",
-                     "source '" + kind + ":' is not available in this build yet (real sensor "
-                     "sources arrive with the capture work); use --source synthetic:SCENARIO");
+  if (kind == "clip") {
+    if (arg.empty()) return MakeError("usage", "--source clip:DIR needs a clip directory");
+    return ClipSource::Open(arg);
+  }
   return MakeError("usage", "unknown source '" + spec +
                                 "'; expected synthetic:SCENARIO, oni:FILE, openni[:URI], "
                                 "tum:DIR or clip:DIR");

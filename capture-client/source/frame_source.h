@@ -45,8 +45,9 @@ class FrameSource {
   virtual Expected<std::optional<SensorFrame>> Next() = 0;
 };
 
-// Opens a source from its command-line form: synthetic:SCENARIO, oni:FILE, openni[:URI],
-// tum:DIR, clip:DIR. An unknown or unavailable kind is an Error that says what is accepted.
+// Opens a source from its command-line form: synthetic:SCENARIO[?body=FILE.glb] (see
+// SyntheticSource::OpenSpec), oni:FILE, openni[:URI], tum:DIR, clip:DIR. An unknown or
+// unavailable kind is an Error that says what is accepted.
 Expected<std::unique_ptr<FrameSource>> OpenFrameSource(const std::string& spec);
 
 }  // namespace reenact::capture

@@ -3,8 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <tuple>
 
+#include "capture-client/synthetic/bvh_motion.h"
+#include "capture-client/synthetic/handheld_trajectory.h"
 #include "capture-client/synthetic/procedural.h"
+#include "capture-client/synthetic/room.h"
+#include "capture-client/synthetic/sensor_placement.h"
+#include "capture-client/synthetic/walk_motion.h"
 #include "common/error/check.h"
 
 namespace reenact::capture {
@@ -78,29 +84,95 @@ BodyPose TurnAndKick(double t) {
   return p;
 }
 
+// 0-0.7 s the calibration pose, 0.7-1.2 s the arms come down to the walk's first pose,
+// then the circle walk.
+std::vector<BodyPose> WalkHandheldPoses(double rate) {
+  CircleWalkOptions walk;
+  walk.duration_s = 6.3;
+  const std::vector<BodyPose> circle = CircleWalk(walk, rate);
+  const BodyPose from = CalibrationPose(), to = circle.front();
+  std::vector<BodyPose> poses;
+  for (int k = 0; k < static_cast<int>(std::lround(1.2 * rate)); ++k) {
+    const double t = k / rate;
+    BodyPose p = to;
+    for (auto [arm, a, b] : {std::tuple{&p.left_arm, &from.left_arm, &to.left_arm},
+                             std::tuple{&p.right_arm, &from.right_arm, &to.right_arm}}) {
+      arm->abduction = Ramp(a->abduction, b->abduction, 0.7, 1.2, t);
+      arm->elbow = Ramp(a->elbow, b->elbow, 0.7, 1.2, t);
+    }
+    for (auto [leg, a, b] : {std::tuple{&p.left_leg, &from.left_leg, &to.left_leg},
+                             std::tuple{&p.right_leg, &from.right_leg, &to.right_leg}})
+      leg->abduction = Ramp(a->abduction, b->abduction, 0.7, 1.2, t);
+    poses.push_back(p);
+  }
+  poses.insert(poses.end(), circle.begin(), circle.end());
+  return poses;
+}
+
 Eigen::Isometry3d DefaultSensor() {
   return LookAt(Eigen::Vector3d(0.0, -3.0, 1.3), Eigen::Vector3d(0.0, 0.0, 0.95));
 }
 
 }  // namespace
 
-std::vector<std::string> SyntheticScenarioNames() { return {"turn-and-kick", "calibration"}; }
+int Scenario::frame_count() const {
+  if (!poses.empty()) return static_cast<int>(poses.size());
+  if (!target_skeletons.empty()) return static_cast<int>(target_skeletons.size());
+  if (model_animation) return model_animation_frames;
+  return 0;
+}
 
-Expected<Scenario> MakeScenario(std::string_view name) {
+std::vector<std::string> SyntheticScenarioNames() {
+  return {"turn-and-kick", "walk-handheld", "calibration", "model-walk", "bvh:FILE"};
+}
+
+Expected<Scenario> MakeScenario(std::string_view name, uint64_t seed) {
   Scenario s;
   s.name = std::string(name);
   s.frame_rate_hz = 30;
-  s.world_from_sensor = DefaultSensor();
+  if (name.starts_with("bvh:")) {
+    auto fail = [&](const Error& e) {
+      return MakeError(e.code, "scenario '" + s.name + "': " + e.message);
+    };
+    const std::string path(name.substr(4));
+    if (path.empty()) return fail(MakeError("invalid_argument", "bvh: needs a file path"));
+    BvhMotionOptions options;
+    options.frame_rate_hz = s.frame_rate_hz;
+    Expected<BvhMotion> motion = LoadBvhMotion(path, options);
+    if (!motion.ok()) return fail(motion.error());
+    s.target_skeletons = std::move(motion->skeletons);
+    Expected<Eigen::Isometry3d> sensor =
+        PlaceStaticSensor(s.target_skeletons, PinholeCamera::KinectLike(), *SharedRoom());
+    if (!sensor.ok())
+      return fail(MakeError(sensor.error().code, path + ": " + sensor.error().message));
+    s.world_from_sensor.assign(s.frame_count(), *sensor);
+    return s;
+  }
+  if (name == "walk-handheld") {
+    s.poses = WalkHandheldPoses(s.frame_rate_hz);
+    std::vector<Eigen::Vector3d> target;
+    for (const BodyPose& p : s.poses) target.emplace_back(p.root_xy.x(), p.root_xy.y(), 0.9);
+    const std::vector<Eigen::Vector3d> path =
+        OperatorArc(OperatorArcOptions{}, s.frame_count(), s.frame_rate_hz);
+    HandheldOptions handheld;
+    handheld.seed = seed;
+    s.world_from_sensor = HandheldSensorPoses(path, target, s.frame_rate_hz, handheld);
+    return s;
+  }
   if (name == "turn-and-kick") {
     for (int i = 0; i < 180; ++i) s.poses.push_back(TurnAndKick(i / s.frame_rate_hz));
   } else if (name == "calibration") {
     s.poses.assign(30, CalibrationPose());
+  } else if (name == "model-walk") {
+    s.model_animation = true;
+    s.model_animation_frames = 120;
   } else {
     std::string known;
     for (const std::string& n : SyntheticScenarioNames()) known += (known.empty() ? "" : ", ") + n;
     return MakeError("not_found", "unknown synthetic scenario '" + std::string(name) +
                                       "'; known scenarios: " + known);
   }
+  s.world_from_sensor.assign(s.frame_count(), DefaultSensor());
   return s;
 }
 

@@ -11,6 +11,7 @@
 #include "capture-client/synthetic/procedural.h"
 #include "capture-client/synthetic/room.h"
 #include "capture-client/synthetic/scenario.h"
+#include "capture-client/synthetic/skinned_body.h"
 #include "common/error/check.h"
 #include "common/render/rasterizer.h"
 
@@ -21,8 +22,14 @@ struct SyntheticScene::Data {
   uint64_t seed = 1;
   PinholeCamera camera;
   std::shared_ptr<const RoomModel> room;
+  SyntheticBodySpec body_spec;
+  // The procedural body (when body_spec is not skinned):
   std::array<SegmentMesh, kSegmentCount> body;
   std::vector<PosedBody> posed;  // per frame
+  // The skinned body:
+  std::shared_ptr<const SkinnedBody> skinned;
+  std::vector<SkinPose> skin_poses;      // per frame
+  std::vector<Skeleton> skin_skeletons;  // per frame
 };
 
 namespace {
@@ -95,24 +102,68 @@ void SyntheticRenderOptions::Check() const {
                 "depth range must satisfy 0 <= min_depth_m < max_depth_m <= 65.5");
 }
 
-Expected<SyntheticScene> SyntheticScene::Create(std::string_view scenario, uint64_t seed) {
-  Expected<Scenario> made = MakeScenario(scenario);
+Expected<SyntheticScene> SyntheticScene::Create(std::string_view scenario, uint64_t seed,
+                                                const SyntheticBodySpec& body) {
+  Expected<Scenario> made = MakeScenario(scenario, seed);
   if (!made.ok()) return made.error();
+  if (made->poses.empty() && !body.skinned())
+    return MakeError("unsupported", "scenario '" + made->name +
+                                        "' needs a skinned body (its motion is not given as "
+                                        "procedural poses); the procedural body plays only "
+                                        "procedural scenarios such as turn-and-kick. Give a "
+                                        "glTF skinned mesh, e.g. "
+                                        "../shared/data/models/CesiumMan.glb");
+  REENACT_CHECK(static_cast<int>(made->world_from_sensor.size()) == made->frame_count(),
+                "scenario '" + made->name + "' needs one world_from_sensor per frame");
   auto data = std::make_shared<Data>();
   data->scenario = std::move(made).value();
   data->seed = seed;
   data->camera = PinholeCamera::KinectLike();
   data->room = SharedRoom();
-  data->body = BuildBodyMeshes();
-  for (const BodyPose& pose : data->scenario.poses) data->posed.push_back(PoseBody(pose));
+  data->body_spec = body;
+  const Scenario& sc = data->scenario;
+  if (!body.skinned()) {
+    data->body = BuildBodyMeshes();
+    for (const BodyPose& pose : sc.poses) data->posed.push_back(PoseBody(pose));
+    return SyntheticScene(std::move(data));
+  }
+  if (!(std::isfinite(body.height_m) && body.height_m >= 0 && body.height_m < 10))
+    return MakeError("invalid_argument", "body height must be 0 (the model's own) or in (0, 10) m");
+  SkinnedBodyOptions options;
+  options.height_m = body.height_m;
+  Expected<SkinnedBody> skinned = SkinnedBody::Load(body.gltf_path, options);
+  if (!skinned.ok()) return skinned.error();
+  data->skinned = std::make_shared<const SkinnedBody>(std::move(skinned).value());
+  const SkinnedBody& b = *data->skinned;
+  if (sc.model_animation && sc.poses.empty() && sc.target_skeletons.empty() &&
+      b.model().animations.empty())
+    return MakeError("unsupported", "scenario '" + sc.name +
+                                        "' plays the model's own animation but " +
+                                        body.gltf_path + " has none");
+  for (int f = 0; f < sc.frame_count(); ++f) {
+    Expected<SkinPose> pose = SkinPose{};
+    if (!sc.poses.empty()) {
+      pose = b.RetargetPose(PoseBody(sc.poses[f]).skeleton);
+    } else if (!sc.target_skeletons.empty()) {
+      pose = b.RetargetPose(sc.target_skeletons[f]);
+    } else {
+      pose = b.AnimationPose(0, f / sc.frame_rate_hz);
+    }
+    if (!pose.ok())
+      return MakeError(pose.error().code, "scenario '" + sc.name + "' frame " + std::to_string(f) +
+                                              ": " + pose.error().message);
+    data->skin_skeletons.push_back(b.SkinJointsOnly(*pose).skeleton);
+    data->skin_poses.push_back(std::move(pose).value());
+  }
   return SyntheticScene(std::move(data));
 }
 
 std::vector<std::string> SyntheticScene::ScenarioNames() { return SyntheticScenarioNames(); }
 
 const std::string& SyntheticScene::scenario() const { return data_->scenario.name; }
+const SyntheticBodySpec& SyntheticScene::body() const { return data_->body_spec; }
 uint64_t SyntheticScene::seed() const { return data_->seed; }
-int SyntheticScene::frame_count() const { return static_cast<int>(data_->posed.size()); }
+int SyntheticScene::frame_count() const { return data_->scenario.frame_count(); }
 double SyntheticScene::frame_rate_hz() const { return data_->scenario.frame_rate_hz; }
 const PinholeCamera& SyntheticScene::sensor_camera() const { return data_->camera; }
 
@@ -124,12 +175,12 @@ void SyntheticScene::CheckFrame(int frame) const {
 
 Eigen::Isometry3d SyntheticScene::world_from_sensor(int frame) const {
   CheckFrame(frame);
-  return data_->scenario.world_from_sensor;
+  return data_->scenario.world_from_sensor[frame];
 }
 
 Skeleton SyntheticScene::skeleton_in_world(int frame) const {
   CheckFrame(frame);
-  return data_->posed[frame].skeleton;
+  return data_->skinned ? data_->skin_skeletons[frame] : data_->posed[frame].skeleton;
 }
 
 SyntheticView SyntheticScene::Render(int frame, const PinholeCamera& camera,
@@ -149,7 +200,11 @@ SyntheticView SyntheticScene::Render(int frame, const PinholeCamera& camera,
   view.part_labels = ImageLabel8(camera.width, camera.height, 1, kBackgroundLabel);
   const Eigen::Isometry3d camera_from_world = world_from_camera.inverse();
   if (options.draw_room) DrawRoom(*data_->room, camera_from_world, &r, &view);
-  DrawBody(data_->body, data_->posed[frame], camera_from_world, &r, &view);
+  if (data_->skinned)
+    data_->skinned->Draw(data_->skinned->Skin(data_->skin_poses[frame]), camera_from_world, &r,
+                         &view);
+  else
+    DrawBody(data_->body, data_->posed[frame], camera_from_world, &r, &view);
 
   const Image<double>& z = r.depth();
   for (size_t i = 0; i < z.data.size(); ++i) {

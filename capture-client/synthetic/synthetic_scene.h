@@ -1,8 +1,11 @@
 #pragma once
-// A deterministic synthetic RGB-D capture: a procedural, textured, articulated person
-// (body_model.h, body_mesh.h, body_texture.h) performing a scripted motion (scenario.h) in
-// a textured room (room.h), seen by a static Kinect-like sensor
-// (PinholeCamera::KinectLike(), 640x480) about 3 m in front of the subject at 1.3 m height.
+// A deterministic synthetic RGB-D capture: a textured, articulated person, either the
+// procedural body (body_model.h, body_mesh.h, body_texture.h; the default, needs no data
+// file) or a glTF skinned mesh (skinned_body.h, e.g. ../shared/data/models/CesiumMan.glb;
+// see SyntheticBodySpec), performing a scripted motion (scenario.h) in
+// a textured room (room.h), seen by a Kinect-like sensor (PinholeCamera::KinectLike(),
+// 640x480), static about 3 m in front of the subject at 1.3 m height or hand-held, as the
+// scenario says (its world_from_sensor per frame).
 // Ground truth for tests and evaluation: the skeleton, the sensor pose, per-pixel depth,
 // the subject mask and body-part labels.
 //
@@ -46,23 +49,45 @@ struct SyntheticRenderOptions {
   void Check() const;
 };
 
+// Which subject a scene shows.
+//  - procedural (gltf_path empty, the default): the procedural body; it plays scenarios
+//    given as poses (turn-and-kick, walk-handheld, calibration).
+//  - skinned (gltf_path set): the glTF skinned mesh at that path (.glb or .gltf), scaled to
+//    height_m (0 keeps the model's own; CesiumMan 1.51 m). It plays every scenario: poses
+//    are retargeted onto it from the procedural body's skeleton (PoseBody), bvh: motion from
+//    its target skeletons, model-walk is the model's own animation. The ground-truth
+//    skeleton comes from its skin joints (skinned_body.h says how).
+struct SyntheticBodySpec {
+  std::string gltf_path;
+  double height_m = 0;
+
+  bool skinned() const { return !gltf_path.empty(); }
+};
+
 class SyntheticScene {
  public:
-  // A scene playing the named scenario (see ScenarioNames()); seed drives the depth noise.
-  // Error "not_found" listing the known scenarios for an unknown name.
-  static Expected<SyntheticScene> Create(std::string_view scenario, uint64_t seed = 1);
+  // A scene playing the named scenario (see ScenarioNames()) on the given body; seed drives
+  // the depth noise (and walk-handheld's hand shake). Errors: "not_found" listing the known
+  // scenarios for an unknown name; "unsupported" for a scenario that needs a skinned body
+  // (bvh:, model-walk) on the procedural one, or model-walk on a model without animation;
+  // the errors of SkinnedBody::Load for a body file that cannot be used.
+  static Expected<SyntheticScene> Create(std::string_view scenario, uint64_t seed = 1,
+                                         const SyntheticBodySpec& body = {});
   static std::vector<std::string> ScenarioNames();
 
   const std::string& scenario() const;
+  const SyntheticBodySpec& body() const;
   uint64_t seed() const;
   int frame_count() const;
   double frame_rate_hz() const;
   const PinholeCamera& sensor_camera() const;
-  // The sensor's pose (static over the clip). Precondition: 0 <= frame < frame_count().
+  // The sensor's pose at `frame` (static or moving, per the scenario).
+  // Precondition: 0 <= frame < frame_count().
   Eigen::Isometry3d world_from_sensor(int frame) const;
   // Ground truth skeleton in the world frame, every joint confidence 1 (joint placement in
   // body_model.h: head joint at the head's centre, neck at the base of the head, hands at
-  // the palm centre, feet at the ankle). Precondition: 0 <= frame < frame_count().
+  // the palm centre, feet at the ankle; for a skinned body as skinned_body.h says).
+  // Precondition: 0 <= frame < frame_count().
   Skeleton skeleton_in_world(int frame) const;
   Eigen::Vector3d world_up() const { return Eigen::Vector3d::UnitZ(); }
 

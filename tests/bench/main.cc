@@ -9,6 +9,7 @@
 #include "proto/report/report_table.h"
 #include "tests/bench/core_bench.h"
 #include "tests/bench/server_bench.h"
+#include "tests/bench/source_bench.h"
 
 namespace {
 
@@ -19,6 +20,7 @@ constexpr const char* kUsage =
     "  reenact-bench core [--repeats R] [--quick] [--only GROUP] [--json FILE]\n"
     "                     groups: selection, mapping, render, model\n"
     "  reenact-bench server ...\n"
+    "  reenact-bench sources [--oni FILE] [--tum DIR] [--repeats R] [--json FILE]\n"
     "  reenact-bench capture|viewer ...   (not in this build yet)\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-bench", e); }
@@ -60,10 +62,11 @@ int NotYet(const CommandLine& cl) {
 
 int main(int argc, char** argv) {
   // Flags of every command; each command reads its own.
-  const CommandLineSpec spec{{"repeats", "only", "json", "clips", "clients", "seconds", "db"},
-                             {"quick"}};
+  const CommandLineSpec spec{
+      {"repeats", "only", "json", "clips", "clients", "seconds", "db", "oni", "tum"}, {"quick"}};
   return RunTool(
       "reenact-bench", kUsage, spec,
-      {{"core", Core}, {"server", bench::RunServerBench}, {"capture", NotYet}, {"viewer", NotYet}},
+      {{"core", Core}, {"server", bench::RunServerBench},
+       {"sources", bench::RunSourceBench}, {"capture", NotYet}, {"viewer", NotYet}},
       argc, argv);
 }

@@ -58,7 +58,7 @@ fs::path NearestExisting(const fs::path& path) {
 }  // namespace
 
 std::set<std::string> QualityFlags() {
-  return {"scenario", "methods", "views", "step", "json", "markdown", "images", "image-pairs"};
+  return {"scenario", "body", "methods", "views", "step", "json", "markdown", "images", "image-pairs"};
 }
 
 Status CheckWritableFile(const std::string& flag, const std::string& path) {
@@ -100,6 +100,8 @@ Expected<QualityCommand> ParseQualityCommand(const CommandLine& cl) {
   QualityOptions& o = command.options;
   o.scenario = cl.GetOr("scenario", o.scenario);
   if (o.scenario.empty()) return MakeError("usage", "--scenario: empty name");
+  o.body = cl.GetOr("body", "");
+  if (o.body == "procedural") o.body.clear();
   if (auto text = cl.Get("methods")) {
     auto list = SplitList("methods", *text);
     if (!list.ok()) return list.error();

@@ -34,9 +34,10 @@ struct OpenedScenario {
   std::unique_ptr<capture::FrameSource> source;
 };
 Expected<OpenedScenario> OpenScenario(const QualityOptions& options) {
-  auto scene = capture::SyntheticScene::Create(options.scenario);
+  const capture::SyntheticBodySpec body{.gltf_path = options.body};
+  auto scene = capture::SyntheticScene::Create(options.scenario, 1, body);
   if (!scene.ok()) return scene.error();
-  auto source = capture::SyntheticSource::Open(options.scenario);
+  auto source = capture::SyntheticSource::Open(options.scenario, 1, body);
   if (!source.ok()) return source.error();
   return OpenedScenario{std::move(scene).value(), std::move(source).value()};
 }

@@ -43,6 +43,9 @@ struct ImagePair {
 
 struct QualityOptions {
   std::string scenario = "turn-and-kick";  // a SyntheticScene scenario name
+  // The subject's body: empty for the procedural body (no data file needed), else the path
+  // of a skinned glTF model (e.g. ../shared/data/models/CesiumMan.glb; synthetic_scene.h).
+  std::string body;
   std::vector<std::string> methods = {"thesis"};
   std::vector<double> views_deg = {0, 30, 60, 90, 135, 180};  // finite
   int frame_step = 10;  // >= 1: frames 0, step, 2 step, ... are compared

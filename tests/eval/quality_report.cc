@@ -85,7 +85,9 @@ std::vector<std::string> QualityRules() {
 
 std::string QualityCommandLine(const QualityOptions& options) {
   std::ostringstream line;
-  line << "reenact-eval quality --scenario " << options.scenario << " --methods ";
+  line << "reenact-eval quality --scenario " << options.scenario;
+  if (!options.body.empty()) line << " --body " << options.body;
+  line << " --methods ";
   for (size_t i = 0; i < options.methods.size(); ++i) line << (i ? "," : "") << options.methods[i];
   line << " --views ";
   for (size_t i = 0; i < options.views_deg.size(); ++i)
