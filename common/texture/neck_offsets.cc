@@ -35,4 +35,21 @@ double NeckOffsetCost(const double* q, uint16_t q_present, const double* o, uint
   return cost;
 }
 
+NeckOffsetTable MakeNeckOffsetTable(std::span<const Skeleton> stored,
+                                    std::span<const bool> usable) {
+  REENACT_CHECK(usable.empty() || usable.size() == stored.size(),
+                "usable must be empty or one flag per stored skeleton");
+  REENACT_CHECK(stored.size() < static_cast<size_t>(std::numeric_limits<int>::max()),
+                "too many stored skeletons");
+  NeckOffsetTable table;
+  for (size_t n = 0; n < stored.size(); ++n) {
+    if ((!usable.empty() && !usable[n]) || !stored[n].Has(Joint::kNeck)) continue;
+    table.frame.push_back(static_cast<int>(n));
+    table.offset.resize(table.offset.size() + kNeckOffsetDims);
+    table.present.push_back(
+        WriteNeckOffsets(stored[n], &table.offset[table.offset.size() - kNeckOffsetDims]));
+  }
+  return table;
+}
+
 }  // namespace reenact

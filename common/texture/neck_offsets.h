@@ -9,6 +9,8 @@
 
 #include <cstdint>
 #include <limits>
+#include <span>
+#include <vector>
 
 #include "common/skeleton/skeleton.h"
 
@@ -29,5 +31,17 @@ uint16_t WriteNeckOffsets(const Skeleton& skeleton, double* out);
 // sum (then only "above limit" is meaningful).
 double NeckOffsetCost(const double* q, uint16_t q_present, const double* o, uint16_t o_present,
                       double missing_cost, double limit = std::numeric_limits<double>::infinity());
+
+// The stored frames an index holds, in stored order: those flagged usable (all when usable is
+// empty) that have a neck (the others cannot be scored), as rows of neck offsets.
+struct NeckOffsetTable {
+  std::vector<int> frame;         // row -> stored frame index
+  std::vector<double> offset;     // kNeckOffsetDims per row
+  std::vector<uint16_t> present;  // row -> mask of present slots
+};
+
+// Throws CheckError unless usable is empty or has one flag per stored skeleton, or when there
+// are INT_MAX skeletons or more.
+NeckOffsetTable MakeNeckOffsetTable(std::span<const Skeleton> stored, std::span<const bool> usable);
 
 }  // namespace reenact

@@ -94,21 +94,16 @@ void TextureGraphSearch::Check() const { REENACT_CHECK(beam >= 1, "beam must be 
 TextureGraphIndex::TextureGraphIndex(std::span<const Skeleton> stored, std::span<const bool> usable,
                                      const TextureGraphIndexOptions& options) {
   options.Check();
-  REENACT_CHECK(usable.empty() || usable.size() == stored.size(),
-                "usable must be empty or one flag per stored skeleton");
-  REENACT_CHECK(stored.size() < static_cast<size_t>(std::numeric_limits<int>::max()),
-                "too many stored skeletons");
   stored_count_ = static_cast<int>(stored.size());
   max_neighbors_ = options.max_neighbors;
   build_missing_cost_ = static_cast<float>(options.missing_joint_cost_m);
-  for (size_t n = 0; n < stored.size(); ++n) {
-    if ((!usable.empty() && !usable[n]) || !stored[n].Has(Joint::kNeck)) continue;
-    frame_.push_back(static_cast<int>(n));
-    offset_.resize(offset_.size() + kNeckOffsetDims);
-    const double* o = &offset_[offset_.size() - kNeckOffsetDims];
-    present_.push_back(WriteNeckOffsets(stored[n], &offset_[offset_.size() - kNeckOffsetDims]) |
-                       kPadBit);
-    point_.push_back(ToPoint(o));
+  NeckOffsetTable table = MakeNeckOffsetTable(stored, usable);
+  frame_ = std::move(table.frame);
+  offset_ = std::move(table.offset);
+  present_ = std::move(table.present);
+  for (size_t row = 0; row < frame_.size(); ++row) {
+    present_[row] |= kPadBit;
+    point_.push_back(ToPoint(&offset_[row * kNeckOffsetDims]));
   }
   const int count = indexed_count();
   links0_.assign(static_cast<size_t>(count) * Links0Stride(), 0);

@@ -28,18 +28,11 @@ void TextureIndexOptions::Check() const { REENACT_CHECK(leaf_size >= 1, "leaf_si
 TextureIndex::TextureIndex(std::span<const Skeleton> stored, std::span<const bool> usable,
                            const TextureIndexOptions& options) {
   options.Check();
-  REENACT_CHECK(usable.empty() || usable.size() == stored.size(),
-                "usable must be empty or one flag per stored skeleton");
-  REENACT_CHECK(stored.size() < static_cast<size_t>(std::numeric_limits<int>::max()),
-                "too many stored skeletons");
   stored_count_ = static_cast<int>(stored.size());
-  for (size_t n = 0; n < stored.size(); ++n) {
-    const Skeleton& s = stored[n];
-    if ((!usable.empty() && !usable[n]) || !s.Has(Joint::kNeck)) continue;
-    frame_.push_back(static_cast<int>(n));
-    offset_.resize(offset_.size() + kDims);
-    present_.push_back(WriteNeckOffsets(s, &offset_[offset_.size() - kDims]));
-  }
+  NeckOffsetTable table = MakeNeckOffsetTable(stored, usable);
+  frame_ = std::move(table.frame);
+  offset_ = std::move(table.offset);
+  present_ = std::move(table.present);
   if (frame_.empty()) return;
   nodes_.reserve(2 * frame_.size() / options.leaf_size + 2);
   Build(0, static_cast<int>(frame_.size()), options.leaf_size);

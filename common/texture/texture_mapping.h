@@ -16,10 +16,9 @@
 // scale goes from the viewer's cylinder to the stored one (Eq. 9 read so that the mapped
 // cylinder lands on the stored cylinder, whose radius is |v_n| times the same ratio).
 
-#include <optional>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <optional>
 
 namespace reenact {
 

@@ -23,8 +23,8 @@ struct TextureSelectionOptions {
 };
 
 struct TextureCandidate {
-  int frame = -1;    // index into the stored skeletons
-  double cost = 0;   // Eq. 5, metres
+  int frame = -1;   // index into the stored skeletons
+  double cost = 0;  // Eq. 5, metres
 };
 
 // Eq. 5 for one pair of skeletons; nullopt if either has no neck.

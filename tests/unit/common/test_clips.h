@@ -1,6 +1,8 @@
 #pragma once
 // Clips of skeletons for the texture-selection tests, each skeleton in its sensor frame
-// (x right, y down, z forward), metres.
+// (x right, y down, z forward), metres, and the comparison of two rankings.
+
+#include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -8,6 +10,7 @@
 #include <vector>
 
 #include "common/skeleton/skeleton.h"
+#include "common/texture/texture_selection.h"
 #include "tests/unit/common/test_skeletons.h"
 
 namespace reenact::testing {
@@ -56,6 +59,16 @@ inline Skeleton Query(const std::vector<Skeleton>& clip, std::mt19937& rng) {
       Eigen::AngleAxisd(angle(rng), Eigen::Vector3d::UnitY()) *
       Eigen::AngleAxisd(0.2 * angle(rng), Eigen::Vector3d::UnitX());
   return clip[pick(rng)].Transformed(viewer_from_sensor);
+}
+
+// The same frames with the same costs, bit for bit, in the same order.
+inline void ExpectSameRanking(const std::vector<TextureCandidate>& got,
+                              const std::vector<TextureCandidate>& want) {
+  ASSERT_EQ(got.size(), want.size());
+  for (size_t r = 0; r < want.size(); ++r) {
+    EXPECT_EQ(got[r].frame, want[r].frame) << "rank " << r;
+    EXPECT_EQ(got[r].cost, want[r].cost) << "rank " << r;  // bit for bit
+  }
 }
 
 }  // namespace reenact::testing

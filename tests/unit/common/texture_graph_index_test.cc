@@ -15,19 +15,11 @@
 namespace reenact {
 namespace {
 
+using testing::ExpectSameRanking;
 using testing::Query;
 using testing::RandomClip;
 using testing::SmoothClip;
 using testing::StandingPerson;
-
-void ExpectSameRanking(const std::vector<TextureCandidate>& got,
-                       const std::vector<TextureCandidate>& want) {
-  ASSERT_EQ(got.size(), want.size());
-  for (size_t r = 0; r < want.size(); ++r) {
-    EXPECT_EQ(got[r].frame, want[r].frame) << "rank " << r;
-    EXPECT_EQ(got[r].cost, want[r].cost) << "rank " << r;  // bit for bit
-  }
-}
 
 // Whatever the graph finds, each returned cost is Eq. 5 for that frame, bit for bit, and
 // the list is ranked as the scan ranks (ascending cost, ties to the lower frame).
