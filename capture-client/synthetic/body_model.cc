@@ -100,7 +100,7 @@ PosedBody PoseBody(const BodyPose& pose, const BodyDimensions& d) {
     s.Set(left ? Joint::kLeftFoot : Joint::kRightFoot, ankle);
     seg(left ? Segment::kLeftThigh : Segment::kRightThigh, thigh, hip);
     seg(left ? Segment::kLeftShin : Segment::kRightShin, shin, knee);
-    seg(left ? Segment::kLeftFoot : Segment::kRightFoot, shin * Ry(leg.ankle), ankle);
+    seg(left ? Segment::kLeftFoot : Segment::kRightFoot, shin * Ry(leg.ankle) * Rx(sign * leg.ankle_roll), ankle);
   }
 
   // Stand on the floor: lift everything so that the lower ankle sits at ankle_height.

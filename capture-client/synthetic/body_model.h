@@ -81,6 +81,8 @@ struct LegPose {
   double abduction = 0;  // radians; swings the leg outwards
   double knee = 0;       // radians; bends the shin backwards, 0 = straight
   double ankle = 0;      // radians; tips the toes down (plantar flexion)
+  double ankle_roll = 0; // radians; turns the foot about its long axis after `ankle`, the
+                         // sole's outer edge up (inversion); -abduction keeps the sole flat
 };
 
 struct BodyPose {

@@ -84,6 +84,58 @@ BodyPose TurnAndKick(double t) {
   return p;
 }
 
+// raise-and-crouch (see scenario.h). The legs' angles of the squat at depth c in [0, 1];
+// the ankle dorsiflexes by the shin's forward tilt so the foot stays flat (heel down).
+BodyPose RaiseAndCrouch(double t) {
+  BodyPose p = CalibrationPose();
+  // Arms come down to the sides.
+  const double down = SmoothStep(0.7, 1.2, t);
+  // Both arms raised forward to horizontal, then overhead, back to forward for the squat,
+  // and down to the sides after rising.
+  const double forward = SmoothStep(1.2, 1.9, t) * (1 - SmoothStep(5.2, 5.9, t));
+  const double overhead = SmoothStep(1.9, 2.6, t) * (1 - SmoothStep(2.9, 3.4, t));
+  for (ArmPose* arm : {&p.left_arm, &p.right_arm}) {
+    arm->abduction = Deg(88) + (Deg(18) - Deg(88)) * down - Deg(12) * forward;
+    arm->flexion = Deg(90) * forward + Deg(78) * overhead;
+    arm->elbow = Deg(15) * down * (1 - forward);
+  }
+  p.head_pitch = -Deg(12) * overhead;
+
+  // The squat: down 3.3-4.4 s, held to 4.8 s, up by 5.6 s.
+  const double c = SmoothStep(3.3, 4.4, t) * (1 - SmoothStep(4.8, 5.6, t));
+  // The legs bend in a plane tilted out by the abduction, so the ankle's sideways offset
+  // from the hip is sin(abduction) times the leg's vertical reach in that plane; the
+  // abduction grows as the reach shrinks to keep that offset, i.e. the feet where they stand.
+  const BodyDimensions d;
+  const double stand_abduction = p.left_leg.abduction;
+  const double flexion = Deg(105) * c, knee = Deg(135) * c;
+  const double reach = d.thigh * std::cos(flexion) + d.shin * std::cos(knee - flexion);
+  const double abduction =
+      std::asin(std::min(1.0, std::sin(stand_abduction) * (d.thigh + d.shin) / reach));
+  for (LegPose* leg : {&p.left_leg, &p.right_leg}) {
+    leg->flexion = flexion;
+    leg->knee = knee;
+    leg->abduction = abduction;
+    leg->ankle = flexion - knee;   // sole flat: shin tilt + ankle = 0,
+    leg->ankle_roll = -abduction;  // and no sideways tilt
+  }
+  p.spine_bend = Deg(50) * c;
+  p.head_pitch -= Deg(25) * c;  // keeps looking ahead while the trunk leans forward
+  return p;
+}
+
+// Moves each pose's waist so that the mid-point of the ankles stays where it stands in
+// `standing`: PoseBody keeps the lower ankle at its height above the floor, but bending the
+// legs moves the ankles forward of the hips, which would slide the feet along the floor.
+void PlantFeet(const BodyPose& standing, std::vector<BodyPose>* poses) {
+  auto mid_ankles = [](const BodyPose& p) {
+    const Skeleton s = PoseBody(p).skeleton;
+    return Eigen::Vector2d(((s[Joint::kLeftFoot] + s[Joint::kRightFoot]) / 2).head<2>());
+  };
+  const Eigen::Vector2d target = mid_ankles(standing);
+  for (BodyPose& p : *poses) p.root_xy += target - mid_ankles(p);
+}
+
 // 0-0.7 s the calibration pose, 0.7-1.2 s the arms come down to the walk's first pose,
 // then the circle walk.
 std::vector<BodyPose> WalkHandheldPoses(double rate) {
@@ -123,7 +175,8 @@ int Scenario::frame_count() const {
 }
 
 std::vector<std::string> SyntheticScenarioNames() {
-  return {"turn-and-kick", "walk-handheld", "calibration", "model-walk", "bvh:FILE"};
+  return {"turn-and-kick", "raise-and-crouch", "walk-handheld", "calibration", "model-walk",
+          "bvh:FILE"};
 }
 
 Expected<Scenario> MakeScenario(std::string_view name, uint64_t seed) {
@@ -161,6 +214,9 @@ Expected<Scenario> MakeScenario(std::string_view name, uint64_t seed) {
   }
   if (name == "turn-and-kick") {
     for (int i = 0; i < 180; ++i) s.poses.push_back(TurnAndKick(i / s.frame_rate_hz));
+  } else if (name == "raise-and-crouch") {
+    for (int i = 0; i < 180; ++i) s.poses.push_back(RaiseAndCrouch(i / s.frame_rate_hz));
+    PlantFeet(CalibrationPose(), &s.poses);
   } else if (name == "calibration") {
     s.poses.assign(30, CalibrationPose());
   } else if (name == "model-walk") {

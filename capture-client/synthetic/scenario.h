@@ -8,11 +8,23 @@
 //              swinging arms
 //   4.0-5.0 s  a front kick with the right leg, arms in guard
 //   5.0-6.0 s  the right arm raised overhead, the left arm out sideways, then lowered
+// "raise-and-crouch" (30 fps, 180 frames = 6 s):
+//   0.0-0.7 s  calibration pose;  0.7-1.2 s  arms come down to the sides
+//   1.2-1.9 s  both arms raised forward to horizontal;  1.9-2.6 s  on to overhead (168
+//              degrees), held to 2.9 s;  2.9-3.4 s  back to forward, held through the squat
+//   3.3-4.4 s  down into a deep squat (hips flexed 105 degrees, knees bent 135, the trunk
+//              leaning 50 degrees forward, so the centre of mass stays over the feet; the
+//              waist drops from 1.00 m to 0.40 m), held to 4.8 s;  4.8-5.6 s  rising
+//   5.2-5.9 s  arms down to the sides.
+//   The feet stay planted and flat: each ankle dorsiflexes by its shin's forward tilt and
+//   rolls against the leg's abduction (sole level), the abduction grows as the legs bend so
+//   that the ankles keep their sideways offset, and the waist moves back (root_xy) so that
+//   the ankles keep their place on the floor (PoseBody keeps them at their height).
 // "calibration" (30 fps, 30 frames): the calibration pose held still.
 // "model-walk" (30 fps, 120 frames = 4 s): the skinned model's own animation (its first,
 //   looping; CesiumMan's is a 2 s walk in place), for a skinned body only; the subject at
 //   the origin facing world -y.
-// All three with a static sensor about 3 m in front of the subject at 1.3 m height, looking
+// All four with a static sensor about 3 m in front of the subject at 1.3 m height, looking
 // at it.
 //
 // "walk-handheld" (30 fps, 225 frames = 7.5 s): 0-0.7 s the calibration pose facing the

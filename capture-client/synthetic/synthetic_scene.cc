@@ -100,6 +100,7 @@ void SyntheticRenderOptions::Check() const {
   REENACT_CHECK(std::isfinite(min_depth_m) && std::isfinite(max_depth_m) && min_depth_m >= 0 &&
                     min_depth_m < max_depth_m && max_depth_m <= 65.5,
                 "depth range must satisfy 0 <= min_depth_m < max_depth_m <= 65.5");
+  noise.Check();
 }
 
 Expected<SyntheticScene> SyntheticScene::Create(std::string_view scenario, uint64_t seed,
@@ -213,7 +214,8 @@ SyntheticView SyntheticScene::Render(int frame, const PinholeCamera& camera,
       view.depth.data[i] = static_cast<uint16_t>(std::lround(d * 1000.0));
   }
   if (options.depth_noise)
-    ApplyDepthNoise(&view.depth, Mix64(data_->seed) ^ Mix64(static_cast<uint64_t>(frame) + 1));
+    ApplyDepthNoise(&view.depth, camera,
+                    Mix64(data_->seed) ^ Mix64(static_cast<uint64_t>(frame) + 1), options.noise);
   return view;
 }
 

@@ -20,6 +20,7 @@
 
 #include <Eigen/Geometry>
 
+#include "capture-client/synthetic/depth_noise.h"
 #include "common/error/expected.h"
 #include "common/geometry/pinhole_camera.h"
 #include "common/image/image.h"
@@ -37,13 +38,16 @@ struct SyntheticView {
 struct SyntheticRenderOptions {
   // Draw the room (walls, floor, ceiling, furniture). Off: background colour 0, depth 0.
   bool draw_room = true;
-  // Kinect-like depth noise and disparity quantisation (depth_noise.h), seeded by the
-  // scene's seed and the frame index. Mask and labels stay exact.
+  // Kinect-like depth errors (depth_noise.h: projector shadow holes at silhouettes, noise,
+  // disparity quantisation) as `noise` says, seeded by the scene's seed and the frame
+  // index. Mask and labels stay exact.
   bool depth_noise = false;
   // Depth readings outside [min_depth_m, max_depth_m] become 0 (no reading), as on a
   // Kinect. Defaults 0.4 m and 8 m; 0 <= min < max <= 65.5.
   double min_depth_m = 0.4;
   double max_depth_m = 8.0;
+  // The depth error model's options, used when depth_noise is on.
+  DepthNoiseOptions noise{};
 
   // Throws CheckError when a field is out of range.
   void Check() const;
