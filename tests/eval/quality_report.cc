@@ -121,7 +121,11 @@ std::string QualityMarkdown(const QualityOptions& options, const QualityRun& run
         "hand. To reproduce:\n\n```\n"
      << QualityCommandLine(options) << "\n```\n\n"
      << "Measured " << machine_line << ".\n\n"
-     << "Synthetic scenario `" << options.scenario << "`: " << run.clip_frames
+     << "Synthetic scenario `" << options.scenario << "` with "
+     << (options.body.empty() ? std::string("the procedural body")
+                              : "the skinned glTF body `" +
+                                    std::filesystem::path(options.body).filename().string() + "`")
+     << ": " << run.clip_frames
      << " frames recorded through the real capture pipeline (render, crop, JPEG/PNG, clip "
         "directory) and read back; "
      << EveryKth(options.frame_step) << " is reenacted at " << options.width << "x"
