@@ -1,5 +1,8 @@
 #include "capture-client/record/clip_recorder.h"
 
+#include "capture-client/segment/person_segmenter.h"
+#include "capture-client/segment/skeleton_consistency.h"
+
 #include <algorithm>
 #include <chrono>
 #include <ctime>
@@ -62,11 +65,10 @@ Status CheckFrameUsable(const SensorFrame& f, const SensorInfo& info, int index)
                                             "sources that provide poses (SLAM arrives later)");
   if (!f.skeleton_in_world)
     return MakeError("unsupported", where + " has no skeleton; pass a source with skeletons");
-  if (!f.person_mask)
-    return MakeError("unsupported", where + " has no person mask");
   if (f.color.channels != 3 || f.color.empty() || f.depth.width != f.color.width ||
-      f.depth.height != f.color.height || f.person_mask->width != f.color.width ||
-      f.person_mask->height != f.color.height)
+      f.depth.height != f.color.height ||
+      (f.person_mask &&
+       (f.person_mask->width != f.color.width || f.person_mask->height != f.color.height)))
     return MakeError("corrupt", where + ": colour, depth and mask sizes disagree");
   return {};
 }
@@ -80,6 +82,7 @@ void RecordOptions::Check() const {
   codec.Check();
   map.Check();
   model.Check();
+  segment.Check();
 }
 
 Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::path& out_dir,
@@ -95,6 +98,7 @@ Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::p
   std::vector<Skeleton> skeletons_in_sensor;
   std::vector<bool> has_subject;
   BackgroundMapBuilder map_builder(options.map);
+  PersonSegmenter segmenter(info.depth_camera, info.depth_scale_m, options.segment);
   RecordSummary summary;
 
   while (options.max_frames < 0 || static_cast<int>(encoded.size()) < options.max_frames) {
@@ -104,8 +108,18 @@ Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::p
     const SensorFrame& f = **next;
     const int index = static_cast<int>(encoded.size());
     if (Status usable = CheckFrameUsable(f, info, index); !usable.ok()) return usable.error();
+    // Sources without a person mask (real sensors) are segmented from depth and skeleton; a
+    // frame where that finds nobody is kept without a subject.
+    std::optional<ImageGray8> segmented;
+    if (!f.person_mask) {
+      auto segmentation = segmenter.SegmentFrame(f, info.world_up);
+      if (!segmentation.ok()) return segmentation.error();
+      segmented = std::move(segmentation->mask);
+      ++summary.segmented_frames;
+    }
+    const ImageGray8& person_mask = f.person_mask ? *f.person_mask : *segmented;
 
-    const CropRect crop = SubjectCrop(*f.person_mask, options.crop_margin_px);
+    const CropRect crop = SubjectCrop(person_mask, options.crop_margin_px);
     proto::ClipFrame frame;
     frame.timestamp_s = f.timestamp_s;
     frame.world_from_sensor = *f.world_from_sensor;
@@ -114,7 +128,7 @@ Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::p
     frame.crop_y = crop.y;
     frame.color = Crop(f.color, crop);
     frame.depth = Crop(f.depth, crop);
-    frame.mask = Crop(*f.person_mask, crop);
+    frame.mask = Crop(person_mask, crop);
     encoded.push_back(proto::EncodeFrame(frame, options.codec));
     summary.frame_bytes += encoded.back().size();
     skeletons_in_sensor.push_back(
@@ -122,7 +136,7 @@ Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::p
     has_subject.push_back(std::any_of(frame.mask.data.begin(), frame.mask.data.end(),
                                       [](uint8_t v) { return v > 127; }));
     if (index % options.keyframe_interval == 0)
-      map_builder.AddKeyframe(f.color, f.depth, info.depth_scale_m, *f.person_mask,
+      map_builder.AddKeyframe(f.color, f.depth, info.depth_scale_m, person_mask,
                               info.color_camera, *f.world_from_sensor);
   }
   if (encoded.empty())
@@ -140,9 +154,15 @@ Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::p
   manifest.frame_rate_hz = info.frame_rate_hz;
   manifest.radius_ratio = DefaultRadiusRatios();
 
-  // std::vector<bool> has no contiguous storage to view as a span.
+  // Frames without a subject or with an inconsistent skeleton (bone lengths off the clip's
+  // medians, left and right swapped) stay out of the model. std::vector<bool> has no
+  // contiguous storage to view as a span.
+  const SkeletonConsistency consistency = CheckSkeletonConsistency(skeletons_in_sensor);
   const auto usable = std::make_unique<bool[]>(has_subject.size());
-  std::copy(has_subject.begin(), has_subject.end(), usable.get());
+  for (size_t n = 0; n < has_subject.size(); ++n) {
+    usable[n] = has_subject[n] && consistency.frames[n].usable;
+    summary.inconsistent_skeletons += !consistency.frames[n].usable;
+  }
   ModelBuildOptions model_options = options.model;
   model_options.fit.depth_scale_m = info.depth_scale_m;
   const ModelBuildResult model = BuildCylinderModel(

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "capture-client/map/background_map_builder.h"
+#include "capture-client/segment/segment_options.h"
 #include "capture-client/source/frame_source.h"
 #include "common/model/model_building.h"
 #include "common/error/expected.h"
@@ -24,6 +25,7 @@ struct RecordOptions {
   std::string author;
   proto::FrameCodecOptions codec;
   BackgroundMapOptions map;
+  PersonSegmentOptions segment;  // for frames whose source gives no person mask
   // Cylinder model (Eq. 2-4): per-part median over the 3 best frames by F(n), which halves
   // the radius error of the thesis's single frame on noisy skeletons (reenact-bench core).
   ModelBuildOptions model{.representative = {}, .fit = {}, .robust_k = 3};
@@ -38,11 +40,16 @@ struct RecordSummary {
   size_t map_points = 0;
   int representative_frame = -1;
   int fitted_parts = 0;           // parts whose radius came from the fit, not the default
+  int segmented_frames = 0;       // frames whose person mask came from our segmentation
+  int inconsistent_skeletons = 0; // frames kept out of the model (skeleton consistency check)
   double seconds = 0;             // wall time
 };
 
+// A frame without a person mask is segmented from its depth and skeleton
+// (capture-client/segment/person_segmenter.h). Skeletons that fail the consistency check
+// (skeleton_consistency.h) are recorded but kept out of the cylinder model.
 // Errors: the source fails, gives no frame, or lacks what this build needs per frame (sensor
-// pose, skeleton, person mask: SLAM, tracking and segmentation of real sensors arrive later);
+// pose and skeleton: SLAM and tracking of real sensors arrive later);
 // the directory cannot be written. Nothing is left at out_dir on failure.
 Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::path& out_dir,
                                    const RecordOptions& options);
