@@ -18,13 +18,16 @@ constexpr const char* kUsage =
     "                         [--title S] [--author S]\n"
     "      SRC: synthetic:SCENARIO[?body=FILE.glb[&body_height=M]] | oni:FILE |\n"
     "           openni[:URI] | tum:DIR | clip:DIR\n"
-    "      SCENARIO: turn-and-kick | walk-handheld (moving sensor) | calibration |\n"
-    "                model-walk | bvh:FILE.bvh   (model-walk and bvh: need body=)\n"
+    "      SCENARIO: turn-and-kick | raise-and-crouch | walk-handheld (moving sensor) |\n"
+    "                calibration | model-walk | bvh:FILE.bvh   (model-walk and bvh: need\n"
+    "                body=)\n"
     "      body=FILE.glb: a glTF skinned mesh (e.g. ../shared/data/models/CesiumMan.glb)\n"
     "                instead of the procedural body; body_height=M scales it\n"
     "  reenact-capture info DIR\n"
     "  reenact-capture publish DIR --server URL --token T --lat DEG --lon DEG [--alt M]\n"
-    "                          [--accuracy M] [--title S]\n";
+    "                          [--accuracy M] [--title S] [--retries N]\n"
+    "      resumable: after an interruption the same command sends only what is missing;\n"
+    "      --retries N: retries per request on connection errors, 5xx and 429 (default 5)\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-capture", e); }
 
@@ -107,10 +110,25 @@ int Publish(const CommandLine& cl) {
     return Fail(checked.error());
   options.location = {*lat, *lon, *alt, *accuracy, std::nullopt};
   if (auto title = cl.Get("title")) options.title = *title;
+  const auto retries = cl.GetInt("retries", options.retry.max_attempts - 1);
+  if (!retries.ok()) return Fail(retries.error());
+  if (*retries < 0 || *retries > 100)
+    return Fail(MakeError("usage", "--retries must be in 0..100"));
+  options.retry.max_attempts = static_cast<int>(*retries) + 1;
+  options.progress = capture::DefaultProgressStyle();
   const auto summary = capture::PublishClip(cl.positionals()[1], options);
   if (!summary.ok()) return Fail(summary.error());
-  std::printf("published clip %s (%d frames, %.1f KB) in %.1f s\n", summary->clip_id.c_str(),
-              summary->frames, summary->bytes_sent / 1024.0, summary->seconds);
+  if (!summary->already_published) {
+    std::printf("published clip %s (%d frames) in %.1f s: sent %d of %d parts (%.1f KB)%s\n",
+                summary->clip_id.c_str(), summary->frames, summary->seconds,
+                summary->parts_sent, summary->parts_total, summary->bytes_sent / 1024.0,
+                summary->resumed ? ", resumed an earlier upload" : "");
+  }
+  std::printf("parts_total=%d parts_sent=%d parts_skipped=%d parts_repaired=%d bytes_sent=%llu "
+              "retries=%d resumed=%d already_published=%d\n",
+              summary->parts_total, summary->parts_sent, summary->parts_skipped,
+              summary->parts_repaired, static_cast<unsigned long long>(summary->bytes_sent),
+              summary->retries, summary->resumed ? 1 : 0, summary->already_published ? 1 : 0);
   std::printf("clip_id=%s\n", summary->clip_id.c_str());
   return 0;
 }
@@ -119,7 +137,7 @@ int Publish(const CommandLine& cl) {
 
 int main(int argc, char** argv) {
   const CommandLineSpec spec{{"source", "out", "frames", "skeleton", "title", "author", "server",
-                              "token", "lat", "lon", "alt", "accuracy"},
+                              "token", "lat", "lon", "alt", "accuracy", "retries"},
                              {}};
   return RunTool("reenact-capture", kUsage, spec,
                  {{"record", Record}, {"info", Info}, {"publish", Publish}}, argc, argv);

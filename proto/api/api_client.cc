@@ -6,22 +6,24 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <random>
 #include <thread>
 
 namespace reenact::proto {
 
 namespace {
 
-// The wait a 429 asks for (Retry-After in seconds), within [0.1 s, 10 s]; 1 s if absent.
-std::chrono::milliseconds RetryAfter(const HttpResponse& response) {
-  double seconds = 1.0;
-  if (auto header = response.Header("Retry-After")) {
-    char* end = nullptr;
-    const double parsed = std::strtod(header->c_str(), &end);
-    if (end != header->c_str() && std::isfinite(parsed)) seconds = parsed;
-  }
-  return std::chrono::milliseconds(
-      static_cast<int64_t>(1000 * std::clamp(seconds, 0.1, 10.0)));
+// A uniform draw in [0, 1) for backoff jitter.
+double JitterDraw() {
+  thread_local std::mt19937_64 rng{std::random_device{}()};
+  return std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+}
+
+Error ErrorOf(const HttpRequest& request, const HttpResponse& response) {
+  if (auto error = ParseErrorBody(response.body)) return *error;
+  return MakeError("http_" + std::to_string(response.status),
+                   request.method + " " + request.target + " failed with HTTP status " +
+                       std::to_string(response.status));
 }
 
 // Percent-encodes a query value (RFC 3986 unreserved characters pass through).
@@ -54,30 +56,45 @@ HttpRequest Make(std::string method, std::string target) {
 
 }  // namespace
 
-ApiClient::ApiClient(std::string base_url, std::string token, HttpClientOptions options)
-    : http_(std::move(base_url), options), token_(std::move(token)) {}
+ApiClient::ApiClient(std::string base_url, std::string token, HttpClientOptions options,
+                     RetryPolicy retry)
+    : http_(std::move(base_url), options), token_(std::move(token)), retry_(retry) {
+  retry_.Check();
+}
 
-Expected<HttpResponse> ApiClient::Call(HttpRequest request, int expected_status) const {
+Expected<HttpResponse> ApiClient::Call(HttpRequest request, int expected_status,
+                                       bool idempotent) const {
   if (!token_.empty()) request.headers.emplace_back("Authorization", "Bearer " + token_);
-  auto response = http_.Send(request);
-  for (int retry = 0; response && response->status == 429 && retry < kMaxRateLimitRetries;
-       ++retry) {
-    std::this_thread::sleep_for(RetryAfter(*response));
-    response = http_.Send(request);
+  for (int attempt = 1;; ++attempt) {
+    auto response = http_.Send(request);
+    if (response && response->status == expected_status) return response;
+    Error error = response ? ErrorOf(request, *response) : response.error();
+    const FailureKind kind =
+        response ? ClassifyStatus(response->status) : ClassifyTransportError(error.code);
+    if (!retry_.ShouldRetry(kind, idempotent)) return error;
+    if (attempt >= retry_.max_attempts) {
+      if (attempt > 1) error.message += " (gave up after " + std::to_string(attempt) + " attempts)";
+      return error;
+    }
+    std::optional<double> retry_after;
+    if (response) {
+      if (auto header = response->Header("Retry-After")) retry_after = ParseRetryAfter(*header);
+      if (!retry_after && kind == FailureKind::kRateLimited) retry_after = 1.0;
+    }
+    const double delay_s = retry_.DelayS(attempt - 1, JitterDraw(), retry_after);
+    if (observer_) {
+      observer_(RetryNotice{request.method + " " + request.target, attempt, retry_.max_attempts,
+                            delay_s, error});
+    }
+    std::this_thread::sleep_for(std::chrono::duration<double>(delay_s));
   }
-  if (!response) return response.error();
-  if (response->status == expected_status) return response;
-  if (auto error = ParseErrorBody(response->body)) return *error;
-  return MakeError("http_" + std::to_string(response->status),
-                   request.method + " " + request.target + " failed with HTTP status " +
-                       std::to_string(response->status));
 }
 
 Expected<std::string> ApiClient::CreateClip(const std::string& manifest_json) const {
   HttpRequest request = Make("POST", "/v1/clips");
   request.content_type = "application/json";
   request.body = manifest_json;
-  auto response = Call(std::move(request), 201);
+  auto response = Call(std::move(request), 201, /*idempotent=*/false);
   if (!response) return response.error();
   const auto parsed = nlohmann::json::parse(response->body, nullptr, false);
   if (parsed.is_discarded() || !parsed.is_object() || !parsed.contains("id") ||
@@ -160,6 +177,20 @@ Expected<std::vector<ClipSummary>> ApiClient::MyClips() const {
   auto page = ParseNearbyPage(response->body);
   if (!page) return page.error();
   return std::move(page->clips);
+}
+
+Expected<std::vector<OwnClip>> ApiClient::MyClipsWithManifest(
+    const std::string& manifest_sha256) const {
+  auto response =
+      Call(Make("GET", "/v1/me/clips?manifest_sha256=" + EncodeQueryValue(manifest_sha256)), 200);
+  if (!response) return response.error();
+  return ParseOwnClips(response->body);
+}
+
+Expected<ClipParts> ApiClient::ListParts(const std::string& id) const {
+  auto response = Call(Make("GET", "/v1/clips/" + EncodeQueryValue(id) + "/parts"), 200);
+  if (!response) return response.error();
+  return ParseClipParts(response->body);
 }
 
 }  // namespace reenact::proto

@@ -92,6 +92,97 @@ Expected<NearbyPage> ParseNearbyPage(std::string_view body) {
   return page;
 }
 
+Expected<std::vector<OwnClip>> ParseOwnClips(std::string_view body) {
+  const json parsed = json::parse(body, nullptr, /*allow_exceptions=*/false);
+  if (parsed.is_discarded() || !parsed.is_object() || !parsed.contains("clips") ||
+      !parsed["clips"].is_array()) {
+    return MakeError("invalid_argument", "clip listing is not a JSON object with a 'clips' array");
+  }
+  std::vector<OwnClip> clips;
+  for (const json& item : parsed["clips"]) {
+    auto summary = ClipSummaryFromJson(item);
+    if (!summary) return summary.error();
+    auto state = StringField(item, "state", "own clip");
+    if (!state) return state.error();
+    OwnClip clip;
+    clip.summary = std::move(*summary);
+    clip.published = *state == "published";
+    if (auto hash = item.find("manifest_sha256"); hash != item.end() && hash->is_string()) {
+      clip.manifest_sha256 = hash->get<std::string>();
+    }
+    clips.push_back(std::move(clip));
+  }
+  return clips;
+}
+
+json ClipPartsToJson(const ClipParts& parts) {
+  json list = json::array();
+  for (const PartStatus& part : parts.parts) {
+    json item = {{"part", part.index == kMapPartIndex ? std::string("map")
+                                                       : "frames/" + std::to_string(part.index)},
+                 {"bytes", part.bytes},
+                 {"sha256", part.sha256},
+                 {"held", nullptr}};
+    if (part.held) item["held"] = {{"bytes", part.held->bytes}, {"sha256", part.held->sha256}};
+    list.push_back(std::move(item));
+  }
+  return json{{"id", parts.id},
+              {"state", parts.published ? "published" : "draft"},
+              {"parts", std::move(list)}};
+}
+
+Expected<ClipParts> ParseClipParts(std::string_view body) {
+  constexpr const char* kWhere = "part listing";
+  const json parsed = json::parse(body, nullptr, /*allow_exceptions=*/false);
+  if (parsed.is_discarded() || !parsed.is_object()) {
+    return MakeError("invalid_argument", "part listing is not a JSON object");
+  }
+  auto id = StringField(parsed, "id", kWhere);
+  if (!id) return id.error();
+  auto state = StringField(parsed, "state", kWhere);
+  if (!state) return state.error();
+  auto list = parsed.find("parts");
+  if (list == parsed.end() || !list->is_array()) {
+    return MakeError("invalid_argument", "part listing has no 'parts' array");
+  }
+  ClipParts parts;
+  parts.id = *id;
+  parts.published = *state == "published";
+  for (const json& item : *list) {
+    if (!item.is_object()) return MakeError("invalid_argument", "part listing: item not an object");
+    auto name = StringField(item, "part", kWhere);
+    auto sha = StringField(item, "sha256", kWhere);
+    auto bytes = NumberField(item, "bytes", kWhere);
+    if (!name) return name.error();
+    if (!sha) return sha.error();
+    if (!bytes) return bytes.error();
+    PartStatus part;
+    if (*name == "map") {
+      part.index = kMapPartIndex;
+    } else if (name->rfind("frames/", 0) == 0 && name->size() > 7 && name->size() < 17 &&
+               name->find_first_not_of("0123456789", 7) == std::string::npos) {
+      part.index = std::stoi(name->substr(7));
+    } else {
+      return MakeError("invalid_argument", "part listing: unknown part '" + name->substr(0, 40) +
+                                               "' (expected frames/N or map)");
+    }
+    part.bytes = static_cast<uint64_t>(*bytes);
+    part.sha256 = *sha;
+    auto held = item.find("held");
+    if (held != item.end() && held->is_object()) {
+      auto held_bytes = NumberField(*held, "bytes", "part listing held");
+      auto held_sha = StringField(*held, "sha256", "part listing held");
+      if (!held_bytes) return held_bytes.error();
+      if (!held_sha) return held_sha.error();
+      part.held = HeldBytes{static_cast<uint64_t>(*held_bytes), *held_sha};
+    } else if (held == item.end() || !held->is_null()) {
+      return MakeError("invalid_argument", "part listing: 'held' must be an object or null");
+    }
+    parts.parts.push_back(std::move(part));
+  }
+  return parts;
+}
+
 std::string ErrorBodyJson(std::string_view code, std::string_view message) {
   return json{{"error", {{"code", code}, {"message", message}}}}.dump(
       -1, ' ', false, json::error_handler_t::replace);

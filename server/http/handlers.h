@@ -40,7 +40,15 @@ Response DeleteClip(const Request& request, ServiceContext& context, const Route
 Response ListNearby(const Request& request, ServiceContext& context, const RouteMatch& match);
 Response GetManifest(const Request& request, ServiceContext& context, const RouteMatch& match);
 Response GetPart(const Request& request, ServiceContext& context, const RouteMatch& match);
-Response MyClips(const Request& request, ServiceContext& context);
+// GET /v1/me/clips[?manifest_sha256=HEX]: the caller's clips, optionally only those created
+// from the manifest with that hash (how an interrupted upload finds its draft again).
+Response MyClips(const Request& request, ServiceContext& context, const RouteMatch& match);
+// GET /v1/clips/{id}/parts (owner only): every promised part with the size and SHA-256 of the
+// bytes the server actually holds for it, hashed afresh from the blob store.
+Response ListParts(const Request& request, ServiceContext& context, const RouteMatch& match);
+// The parts of a clip whose stored bytes are absent or differ from the manifest's SHA-256
+// (kMapPart for the map), found by re-reading and hashing every stored part.
+Expected<std::vector<int>> DamagedParts(ServiceContext& context, const std::string& clip_id);
 // DELETE /v1/me/token: revokes the token the request carries (a leaked token's owner stops
 // it at once; a new one comes from the operator's `reenact-server token add`).
 Response RevokeOwnToken(const Request& request, ServiceContext& context);

@@ -3,6 +3,7 @@
 #include <map>
 
 #include "proto/api/api_types.h"
+#include "proto/clip/content_hash.h"
 #include "server/http/handlers.h"
 
 namespace reenact::server::handlers {
@@ -186,15 +187,30 @@ Response GetPart(const Request& request, ServiceContext& context, const RouteMat
                 });
 }
 
-Response MyClips(const Request& request, ServiceContext& context) {
+Response MyClips(const Request& request, ServiceContext& context, const RouteMatch& match) {
   auto user = RequireUser(request, context);
   if (auto* response = std::get_if<Response>(&user)) return std::move(*response);
+  auto params = ParseQuery(match.query);
+  if (!params) return BadRequest("malformed percent-escape in the query string");
+  std::optional<std::string> manifest_sha256;
+  for (const auto& [key, value] : *params) {
+    if (key != "manifest_sha256") {
+      return BadRequest("unknown query parameter '" + key.substr(0, 64) +
+                        "'; /v1/me/clips takes only manifest_sha256");
+    }
+    if (!proto::IsSha256Hex(value)) {
+      return BadRequest("manifest_sha256 must be 64 lowercase hex digits");
+    }
+    manifest_sha256 = value;
+  }
   auto clips = context.metadata.ClipsOfOwner(std::get<UserRecord>(user).id);
   if (!clips) return StorageFailure(clips.error());
   nlohmann::json list = nlohmann::json::array();
   for (const ClipRecord& clip : *clips) {
+    if (manifest_sha256 && clip.manifest_sha256 != *manifest_sha256) continue;
     nlohmann::json item = proto::ClipSummaryToJson(Summary(clip, 0.0));
     item["state"] = clip.state == ClipState::kPublished ? "published" : "draft";
+    item["manifest_sha256"] = clip.manifest_sha256;
     list.push_back(std::move(item));
   }
   return JsonResponse(200, {{"clips", list}, {"next_cursor", nullptr}});

@@ -85,6 +85,8 @@ RouteMatch MatchRoute(std::string_view target) {
       set(RouteId::kMap, "/v1/clips/{id}/map", {"GET", "PUT"});
     } else if (p.size() == 4 && p[3] == "publish") {
       set(RouteId::kPublish, "/v1/clips/{id}/publish", {"POST"});
+    } else if (p.size() == 4 && p[3] == "parts") {
+      set(RouteId::kParts, "/v1/clips/{id}/parts", {"GET"});
     } else if (p.size() == 5 && p[3] == "frames") {
       set(RouteId::kFrame, "/v1/clips/{id}/frames/{n}", {"GET", "PUT"});
       match.frame_text = std::string(p[4]);

@@ -17,6 +17,7 @@ enum class RouteId {
   kFrame,         // /v1/clips/{id}/frames/{n}
   kMap,           // /v1/clips/{id}/map
   kPublish,       // /v1/clips/{id}/publish
+  kParts,         // /v1/clips/{id}/parts
   kMyClips,       // /v1/me/clips
   kMyToken,       // /v1/me/token
 };

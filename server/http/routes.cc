@@ -15,7 +15,7 @@ Response Dispatch(const Request& request, ServiceContext& context, const RouteMa
   switch (match.route) {
     case RouteId::kHealth: return handlers::Health(context);
     case RouteId::kMetrics: return handlers::MetricsText(context);
-    case RouteId::kMyClips: return handlers::MyClips(request, context);
+    case RouteId::kMyClips: return handlers::MyClips(request, context, match);
     case RouteId::kMyToken: return handlers::RevokeOwnToken(request, context);
     case RouteId::kClips:
       return m == "POST" ? handlers::CreateClip(request, context)
@@ -28,6 +28,7 @@ Response Dispatch(const Request& request, ServiceContext& context, const RouteMa
       return m == "PUT" ? handlers::PutPart(request, context, match)
                         : handlers::GetPart(request, context, match);
     case RouteId::kPublish: return handlers::Publish(request, context, match);
+    case RouteId::kParts: return handlers::ListParts(request, context, match);
     case RouteId::kNone: break;
   }
   return ErrorResponse(404, "not_found", "no such route");

@@ -167,10 +167,12 @@ Response PutPart(const Request& request, ServiceContext& context, const RouteMat
   Response done;
   done.status = 204;
   done.content_type.clear();
-  if ((*part)->present) return done;
+  // A part sent again is written again: the bytes are the verified ones, so this is
+  // idempotent, and it repairs a stored copy that was damaged (GET .../parts shows which).
   if (Status s = context.blobs.Put(BlobKey(match.clip_id, index), request.body); !s) {
     return StorageFailure(s.error());
   }
+  if ((*part)->present) return done;
   if (Status s = context.metadata.MarkPartPresent(match.clip_id, index); !s) {
     return StorageFailure(s.error());
   }
@@ -182,6 +184,18 @@ Response Publish(const Request& request, ServiceContext& context, const RouteMat
   if (auto* response = std::get_if<Response>(&user)) return std::move(*response);
   auto clip = LoadOwnedClip(context, match.clip_id, std::get<UserRecord>(user));
   if (auto* response = std::get_if<Response>(&clip)) return std::move(*response);
+  if (std::get<ClipRecord>(clip).state == ClipState::kDraft) {
+    // Every stored part is read back and hashed: a draft whose stored bytes were damaged
+    // after upload is never made visible.
+    auto damaged = DamagedParts(context, match.clip_id);
+    if (!damaged) return StorageFailure(damaged.error());
+    if (!damaged->empty()) {
+      return ErrorResponse(409, "incomplete",
+                           "clip '" + match.clip_id + "' cannot be published yet: the server's "
+                           "copy of " + MissingList(*damaged) +
+                               " differs from the manifest; upload them again");
+    }
+  }
   auto result = context.metadata.Publish(match.clip_id);
   if (!result) return StorageFailure(result.error());
   if (!result->published) {

@@ -114,6 +114,9 @@ class MetadataStore {
   // The manifest bytes exactly as uploaded; code "not_found" when the clip does not exist.
   virtual Expected<std::string> GetManifest(const std::string& id) = 0;
   virtual Expected<std::optional<PartRecord>> GetPart(const std::string& id, int index) = 0;
+  // Every part the clip's manifest promises, frames in order then the map (kMapPart last);
+  // code "not_found" when the clip does not exist.
+  virtual Expected<std::vector<PartRecord>> ListParts(const std::string& id) = 0;
   virtual Status MarkPartPresent(const std::string& id, int index) = 0;
   // In one transaction: if every part is present the clip becomes published.
   virtual Expected<PublishResult> Publish(const std::string& id) = 0;

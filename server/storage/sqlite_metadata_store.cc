@@ -240,6 +240,31 @@ Expected<std::optional<PartRecord>> SqliteMetadataStore::GetPart(const std::stri
   return std::optional<PartRecord>(part);
 }
 
+Expected<std::vector<PartRecord>> SqliteMetadataStore::ListParts(const std::string& id) {
+  std::lock_guard lock(mutex_);
+  auto key = ClipKey(db_, id);
+  if (!key) return key.error();
+  if (!*key) return MakeError("not_found", "no clip " + id);
+  // Frames 0..n-1 first, then the map (index -1): ORDER BY part_index < 0, part_index.
+  auto stmt = db_.Prepare(
+      "SELECT part_index, bytes, sha256, present FROM clip_parts WHERE clip_key = ?1 "
+      "ORDER BY part_index < 0, part_index");
+  if (!stmt) return stmt.error();
+  stmt->Bind(1, **key);
+  std::vector<PartRecord> parts;
+  for (;;) {
+    auto row = stmt->Step();
+    if (!row) return row.error();
+    if (!*row) break;
+    PartRecord part;
+    part.spec = PartSpec{static_cast<int>(stmt->ColumnInt(0)), stmt->ColumnInt(1),
+                         stmt->ColumnText(2)};
+    part.present = stmt->ColumnInt(3) != 0;
+    parts.push_back(std::move(part));
+  }
+  return parts;
+}
+
 Status SqliteMetadataStore::MarkPartPresent(const std::string& id, int index) {
   std::lock_guard lock(mutex_);
   auto stmt = db_.Prepare(

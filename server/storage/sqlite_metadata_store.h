@@ -32,6 +32,7 @@ class SqliteMetadataStore : public MetadataStore {
   Expected<std::optional<ClipRecord>> GetClip(const std::string& id) override;
   Expected<std::string> GetManifest(const std::string& id) override;
   Expected<std::optional<PartRecord>> GetPart(const std::string& id, int index) override;
+  Expected<std::vector<PartRecord>> ListParts(const std::string& id) override;
   Status MarkPartPresent(const std::string& id, int index) override;
   Expected<PublishResult> Publish(const std::string& id) override;
   Expected<bool> DeleteClip(const std::string& id) override;
