@@ -5,6 +5,8 @@
 #include "common/cli/command_line.h"
 #include "tests/eval/quality_cli.h"
 #include "tests/eval/quality_report.h"
+#include "tests/eval/segment_eval.h"
+#include "tests/eval/slam_eval.h"
 
 namespace {
 
@@ -12,14 +14,22 @@ using namespace reenact;
 
 constexpr const char* kUsage =
     "usage:\n"
-    "  reenact-eval quality [--scenario S] [--methods LIST] [--views DEG,...] [--step K]\n"
-    "                       [--json FILE] [--markdown FILE] [--images DIR]\n"
+    "  reenact-eval quality [--scenario S] [--body FILE.glb] [--methods LIST] [--views DEG,...]\n"
+    "                       [--step K] [--json FILE] [--markdown FILE] [--images DIR]\n"
     "                       [--image-pairs FRAME@DEG,...]\n"
-    "      S: a synthetic scenario (default turn-and-kick); LIST: methods (default thesis);\n"
+    "      S: a synthetic scenario (default turn-and-kick); --body: a skinned glTF subject\n"
+    "      (default: the procedural body); LIST: methods (default thesis);\n"
     "      views default 0,30,60,90,135,180; every K-th frame (default 10); --images writes\n"
     "      ground truth | reenactment | error pictures (default pairs: the middle frame at\n"
     "      every view)\n"
-    "  reenact-eval slam|reloc|tracker ...   (not in this build yet)\n";
+    "  reenact-eval segment [--scenario S[,S...]] [--step K] [--json FILE] [--noise on|off]\n"
+    "      person segmentation against the synthetic ground-truth mask (default\n"
+    "      turn-and-kick, every frame, Kinect-like depth noise on): IoU and ms per frame\n"
+    "  reenact-eval slam --tum DIR [--camera fr1|fr2|fr3] [--max-frames N] [--methods LIST]\n"
+    "                    [--readout-ratio R] [--json FILE]\n"
+    "      trajectory error (ATE, RPE) and ms per frame against TUM RGB-D ground truth for\n"
+    "      reenact, opencv-rgbd and opencv-fasticp (default: all three)\n"
+    "  reenact-eval reloc|tracker ...   (not in this build yet)\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-eval", e); }
 
@@ -43,6 +53,15 @@ int Quality(const CommandLine& cl) {
   return 0;
 }
 
+int Segment(const CommandLine& cl) {
+  const auto command = eval::ParseSegmentCommand(cl);
+  if (!command.ok()) return Fail(command.error());
+  const auto rows = eval::RunSegmentEval(command->options);
+  if (!rows.ok()) return Fail(rows.error());
+  const Status printed = eval::SegmentReport(*rows).Print(command->json_path);
+  return printed.ok() ? 0 : Fail(printed.error());
+}
+
 int NotYet(const CommandLine& cl) {
   return Fail(MakeError("unsupported", "'" + cl.positionals()[0] +
                                            "' is not in this build yet: it arrives with SLAM, "
@@ -52,8 +71,14 @@ int NotYet(const CommandLine& cl) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const CommandLineSpec spec{eval::QualityFlags(), {}};
+  CommandLineSpec spec{eval::QualityFlags(), {}};
+  spec.value_flags.merge(eval::SegmentFlags());
+  spec.value_flags.merge(eval::SlamFlags());
   return RunTool("reenact-eval", kUsage, spec,
-                 {{"quality", Quality}, {"slam", NotYet}, {"reloc", NotYet}, {"tracker", NotYet}},
+                 {{"quality", Quality},
+                  {"segment", Segment},
+                  {"slam", eval::RunSlamCommand},
+                  {"reloc", NotYet},
+                  {"tracker", NotYet}},
                  argc, argv);
 }
