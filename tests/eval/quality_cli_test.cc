@@ -8,27 +8,20 @@
 #include <filesystem>
 #include <fstream>
 
+#include "tests/eval/eval_cli_test_support.h"
+
 namespace reenact::eval {
 namespace {
 
 namespace fs = std::filesystem;
 
 Expected<QualityCommand> Parse(std::vector<std::string> args) {
-  args.insert(args.begin(), {"reenact-eval", "quality"});
-  std::vector<const char*> argv;
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  auto cl = CommandLine::Parse(static_cast<int>(argv.size()), argv.data(), 1,
-                               CommandLineSpec{QualityFlags(), {}});
-  if (!cl.ok()) return cl.error();
-  return ParseQualityCommand(*cl);
+  return cli_test::ParseEvalArgs("quality", QualityFlags(), ParseQualityCommand, std::move(args));
 }
 
 void ExpectError(const std::vector<std::string>& args, const std::string& code,
                  const std::string& says) {
-  const auto r = Parse(args);
-  ASSERT_FALSE(r.ok()) << "accepted: " << ::testing::PrintToString(args);
-  EXPECT_EQ(r.error().code, code) << r.error().message;
-  EXPECT_NE(r.error().message.find(says), std::string::npos) << r.error().message;
+  cli_test::ExpectRefused(Parse(args), args, code, says);
 }
 
 class TempDir {

@@ -9,26 +9,19 @@
 #include <fstream>
 #include <sstream>
 
+#include "tests/eval/eval_cli_test_support.h"
+
 namespace reenact::eval {
 namespace {
 
 namespace fs = std::filesystem;
 
 Expected<SegmentCommand> Parse(std::vector<std::string> args) {
-  args.insert(args.begin(), {"reenact-eval", "segment"});
-  std::vector<const char*> argv;
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  auto cl = CommandLine::Parse(static_cast<int>(argv.size()), argv.data(), 1,
-                               CommandLineSpec{SegmentFlags(), {}});
-  if (!cl.ok()) return cl.error();
-  return ParseSegmentCommand(*cl);
+  return cli_test::ParseEvalArgs("segment", SegmentFlags(), ParseSegmentCommand, std::move(args));
 }
 
 void ExpectUsage(const std::vector<std::string>& args, const std::string& says) {
-  const auto r = Parse(args);
-  ASSERT_FALSE(r.ok()) << "accepted: " << ::testing::PrintToString(args);
-  EXPECT_EQ(r.error().code, "usage") << r.error().message;
-  EXPECT_NE(r.error().message.find(says), std::string::npos) << r.error().message;
+  cli_test::ExpectRefused(Parse(args), args, "usage", says);
 }
 
 TEST(SegmentCli, Defaults) {

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "tests/eval/eval_cli_test_support.h"
+
 namespace reenact::eval {
 namespace {
 
@@ -21,21 +23,12 @@ fs::path TumRpyDir() {
 }
 
 Expected<SlamCommand> Parse(std::vector<std::string> args) {
-  args.insert(args.begin(), {"reenact-eval", "slam"});
-  std::vector<const char*> argv;
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  auto cl = CommandLine::Parse(static_cast<int>(argv.size()), argv.data(), 1,
-                               CommandLineSpec{SlamFlags(), {}});
-  if (!cl.ok()) return cl.error();
-  return ParseSlamCommand(*cl);
+  return cli_test::ParseEvalArgs("slam", SlamFlags(), ParseSlamCommand, std::move(args));
 }
 
 void ExpectError(const std::vector<std::string>& args, const std::string& code,
                  const std::string& says) {
-  const auto r = Parse(args);
-  ASSERT_FALSE(r.ok()) << "accepted: " << ::testing::PrintToString(args);
-  EXPECT_EQ(r.error().code, code) << r.error().message;
-  EXPECT_NE(r.error().message.find(says), std::string::npos) << r.error().message;
+  cli_test::ExpectRefused(Parse(args), args, code, says);
 }
 
 TEST(SlamEvalCli, DefaultsRunEveryMethodOnEveryFrame) {

@@ -12,24 +12,14 @@
 #include "capture-client/synthetic/room.h"
 #include "capture-client/synthetic/synthetic_scene.h"
 #include "proto/clip/clip_directory.h"
+#include "tests/support/temp_dir.h"
 
 namespace reenact::capture {
 namespace {
 
+using reenact::test_support::TempDir;
+
 namespace fs = std::filesystem;
-
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "reenact_handheld_XXXXXX").string();
-    path_ = mkdtemp(pattern.data());
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 // Distance from p to the nearest room face (a rectangle: walls, floor, ceiling, furniture).
 double DistanceToRoom(const RoomModel& room, const Eigen::Vector3d& p) {

@@ -10,24 +10,14 @@
 #include "capture-client/source/synthetic_source.h"
 #include "capture-client/synthetic/synthetic_scene.h"
 #include "proto/clip/clip_directory.h"
+#include "tests/support/temp_dir.h"
 
 namespace reenact::capture {
 namespace {
 
+using reenact::test_support::TempDir;
+
 namespace fs = std::filesystem;
-
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "reenact_segrec_XXXXXX").string();
-    path_ = mkdtemp(pattern.data());
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 // The synthetic source without its ground-truth masks; frame `stretched` gets a left forearm
 // 40% longer than the body's (the hand moved along the forearm).

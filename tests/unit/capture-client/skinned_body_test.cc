@@ -13,10 +13,13 @@
 #include "capture-client/synthetic/room.h"
 #include "capture-client/synthetic/scenario.h"
 #include "common/error/check.h"
+#include "tests/support/temp_dir.h"
 #include "tests/unit/capture-client/gltf_test_rig.h"
 
 namespace reenact::capture {
 namespace {
+
+using reenact::test_support::TempDir;
 
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
@@ -25,21 +28,10 @@ using test::TestRigOptions;
 
 const std::string kCesiumMan = std::string(REENACT_SHARED_DATA_DIR) + "/models/CesiumMan.glb";
 
-class TempDir {
- public:
-  TempDir() {
-    std::string t = (std::filesystem::temp_directory_path() / "reenact-skin-XXXXXX").string();
-    REENACT_CHECK(mkdtemp(t.data()) != nullptr, "mkdtemp");
-    path = t;
-  }
-  ~TempDir() { std::filesystem::remove_all(path); }
-  std::filesystem::path path;
-};
-
 GltfSkinModel LoadRig(const TestRig& rig) {
   TempDir dir;
-  rig.WriteGlb(dir.path / "rig.glb");
-  return LoadGltfSkin((dir.path / "rig.glb").string()).value();
+  rig.WriteGlb(dir.path() / "rig.glb");
+  return LoadGltfSkin((dir.path() / "rig.glb").string()).value();
 }
 
 SkinnedBody RigBody(const TestRig& rig, const SkinnedBodyOptions& o = {}) {

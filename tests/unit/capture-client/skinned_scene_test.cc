@@ -11,10 +11,13 @@
 #include "capture-client/source/frame_source.h"
 #include "capture-client/synthetic/synthetic_scene.h"
 #include "common/error/check.h"
+#include "tests/support/temp_dir.h"
 #include "tests/unit/capture-client/gltf_test_rig.h"
 
 namespace reenact::capture {
 namespace {
+
+using reenact::test_support::TempDir;
 
 const std::string kCesiumMan = std::string(REENACT_SHARED_DATA_DIR) + "/models/CesiumMan.glb";
 
@@ -26,17 +29,6 @@ SyntheticBodySpec CesiumMan() {
   b.gltf_path = kCesiumMan;
   return b;
 }
-
-class TempDir {
- public:
-  TempDir() {
-    std::string t = (std::filesystem::temp_directory_path() / "reenact-skscene-XXXXXX").string();
-    REENACT_CHECK(mkdtemp(t.data()) != nullptr, "mkdtemp");
-    path = t;
-  }
-  ~TempDir() { std::filesystem::remove_all(path); }
-  std::filesystem::path path;
-};
 
 // The subject is in view: a mask of a plausible size that does not touch the image border,
 // and nearly every ground-truth joint projects onto it (within 2 pixels: joints lie inside
@@ -141,9 +133,9 @@ TEST(SkinnedScene, AModelWithoutAnimationCannotPlayModelWalk) {
   TempDir dir;
   test::TestRig rig;
   rig.json.erase("animations");
-  rig.WriteGlb(dir.path / "still.glb");
+  rig.WriteGlb(dir.path() / "still.glb");
   SyntheticBodySpec body;
-  body.gltf_path = (dir.path / "still.glb").string();
+  body.gltf_path = (dir.path() / "still.glb").string();
   const Expected<SyntheticScene> walk = SyntheticScene::Create("model-walk", 1, body);
   ASSERT_FALSE(walk.ok());
   EXPECT_EQ(walk.error().code, "unsupported");

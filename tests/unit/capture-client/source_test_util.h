@@ -11,27 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/temp_dir.h"
+
 namespace reenact::capture::testing {
 
+using reenact::test_support::TempDir;
+
 namespace fs = std::filesystem;
-
-class TempDir {
- public:
-  explicit TempDir(const std::string& prefix = "reenact_source") {
-    std::string pattern = (fs::temp_directory_path() / (prefix + "_XXXXXX")).string();
-    path_ = mkdtemp(pattern.data());
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 inline fs::path SharedData(const std::string& relative) {
   return fs::path(REENACT_SHARED_DATA_DIR) / relative;

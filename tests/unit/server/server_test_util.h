@@ -14,26 +14,11 @@
 #include "server/auth/token.h"
 #include "server/http/routes.h"
 #include "server/storage/open_storage.h"
+#include "tests/support/temp_dir.h"
 
 namespace reenact::server::testing {
 
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern =
-        (std::filesystem::temp_directory_path() / "reenact-server-XXXXXX").string();
-    REENACT_CHECK(mkdtemp(pattern.data()) != nullptr, "mkdtemp failed");
-    path_ = pattern;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
+using reenact::test_support::TempDir;
 
 struct TestClip {
   std::string manifest_json;

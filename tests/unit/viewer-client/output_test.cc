@@ -1,12 +1,13 @@
+#include <gtest/gtest.h>
+
 #include <cstdlib>
 #include <filesystem>
-#include <string>
-
-#include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
+#include <string>
 
 #include "common/error/check.h"
+#include "tests/support/temp_dir.h"
 #include "viewer-client/output/contact_sheet.h"
 #include "viewer-client/output/mp4_writer.h"
 #include "viewer-client/output/png_writer.h"
@@ -14,21 +15,9 @@
 namespace reenact::viewer {
 namespace {
 
+using reenact::test_support::TempDir;
+
 namespace fs = std::filesystem;
-
-// A fresh temporary folder, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "reenact_output_test_XXXXXX").string();
-    path_ = mkdtemp(pattern.data());
-  }
-  ~TempDir() { fs::remove_all(path_); }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 ImageRgb8 Uniform(int w, int h, uint8_t r, uint8_t g, uint8_t b) {
   ImageRgb8 image(w, h, 3);
@@ -49,8 +38,8 @@ bool PixelIs(const ImageRgb8& image, int x, int y, uint8_t r, uint8_t g, uint8_t
 TEST(ContactSheet, PlacesThumbnailsInAGridWithGaps) {
   std::vector<ImageRgb8> frames;
   for (int i = 0; i < 5; ++i) {
-    frames.push_back(Uniform(40, 30, static_cast<uint8_t>(40 * i + 50), 200,
-                             static_cast<uint8_t>(10 * i)));
+    frames.push_back(
+        Uniform(40, 30, static_cast<uint8_t>(40 * i + 50), 200, static_cast<uint8_t>(10 * i)));
   }
   const int thumb_w = 20, thumb_h = 15, gap = kContactSheetGap, cols = 3, rows = 2;
   const ImageRgb8 sheet = MakeContactSheet(frames, cols, thumb_w);
