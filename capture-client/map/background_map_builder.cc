@@ -62,6 +62,13 @@ void BackgroundMapBuilder::AddKeyframe(const ImageRgb8& color, const ImageDepthM
   std::vector<cv::KeyPoint> keypoints;
   cv::Mat descriptors;
   orb->detectAndCompute(gray, allowed, keypoints, descriptors);
+  // OpenCV places a level's pixel x_l at x_l s (s = scale^octave), biased by (s - 1) / 2
+  // towards the top-left; its centre lies at (x_l + 1/2) s - 1/2 (as vision/features does).
+  for (cv::KeyPoint& kp : keypoints) {
+    const float half = 0.5f * (std::pow(orb->getScaleFactor(), static_cast<float>(kp.octave)) - 1);
+    kp.pt.x += half;
+    kp.pt.y += half;
+  }
 
   const double cell = options_.merge_radius_m;
   for (size_t i = 0; i < keypoints.size() && map_.points.size() < options_.max_points; ++i) {

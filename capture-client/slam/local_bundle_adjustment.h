@@ -11,7 +11,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "capture-client/slam/observation_model.h"
+#include "capture-client/slam/vision_names.h"
 
 namespace reenact::capture::slam {
 

@@ -17,7 +17,7 @@
 
 #include <Eigen/Core>
 
-#include "capture-client/slam/orb_features.h"
+#include "capture-client/slam/vision_names.h"
 
 namespace reenact::capture::slam {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "capture-client/slam/orb_features.h"
+#include "capture-client/slam/vision_names.h"
 #include "common/error/check.h"
 
 namespace reenact::capture::slam {

@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "capture-client/slam/observation_model.h"
+#include "capture-client/slam/vision_names.h"
 #include "proto/clip/map_codec.h"
 
 namespace reenact::capture::slam {

@@ -5,11 +5,9 @@
 #include <cstdint>
 
 #include "capture-client/slam/local_bundle_adjustment.h"
-#include "capture-client/slam/observation_model.h"
 #include "capture-client/slam/opencv_odometry.h"
-#include "capture-client/slam/orb_features.h"
-#include "capture-client/slam/pose_refinement.h"
 #include "capture-client/slam/slam_map.h"
+#include "capture-client/slam/vision_names.h"
 
 namespace reenact::capture::slam {
 

@@ -9,12 +9,11 @@
 #include <optional>
 #include <vector>
 
-#include "capture-client/slam/feature_matching.h"
 #include "capture-client/slam/opencv_odometry.h"
-#include "capture-client/slam/orb_features.h"
 #include "capture-client/slam/rgbd_slam.h"
 #include "capture-client/slam/slam_map.h"
 #include "capture-client/slam/slam_options.h"
+#include "capture-client/slam/vision_names.h"
 
 namespace reenact::capture::slam {
 

@@ -1,9 +1,8 @@
 #include <algorithm>
 #include <map>
 
-#include "capture-client/slam/pnp_estimator.h"
-#include "capture-client/slam/pose_refinement.h"
 #include "capture-client/slam/slam_state.h"
+#include "capture-client/slam/vision_names.h"
 #include "common/estimate/ransac.h"
 
 namespace reenact::capture::slam {

@@ -12,9 +12,9 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-#include "capture-client/slam/observation_model.h"
+#include "vision/pose/observation_model.h"
 
-namespace reenact::capture::slam {
+namespace reenact::vision {
 
 struct PoseRefinementOptions {
   int rounds = 3;      // outlier re-classification rounds, >= 1
@@ -41,4 +41,4 @@ PoseRefinementResult RefinePose(const Eigen::Isometry3d& initial_sensor_from_wor
                                 double fy, const ObservationNoise& noise,
                                 const PoseRefinementOptions& options = {});
 
-}  // namespace reenact::capture::slam
+}  // namespace reenact::vision

@@ -1,4 +1,4 @@
-#include "capture-client/slam/orb_features.h"
+#include "vision/features/orb_features.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include "common/error/check.h"
 
-namespace reenact::capture::slam {
+namespace reenact::vision {
 
 void OrbFeatureOptions::Check() const {
   REENACT_CHECK(num_features >= 1, "num_features must be >= 1");
@@ -165,4 +165,4 @@ FrameFeatures ExtractOrbFeatures(const cv::Mat& gray, const ImageDepthMm& depth,
   return out;
 }
 
-}  // namespace reenact::capture::slam
+}  // namespace reenact::vision

@@ -32,7 +32,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-namespace reenact::capture::slam {
+namespace reenact::vision {
 
 struct ObservationNoise {
   // Keypoint standard deviation at pyramid level 0, pixels; > 0. Default 2 (on real data
@@ -87,4 +87,4 @@ Eigen::Matrix<double, 3, 6> PointJacobianWrtPose(const Eigen::Vector3d& point_in
 Eigen::Isometry3d ApplyPoseUpdate(const Eigen::Matrix<double, 6, 1>& delta,
                                   const Eigen::Isometry3d& sensor_from_world);
 
-}  // namespace reenact::capture::slam
+}  // namespace reenact::vision

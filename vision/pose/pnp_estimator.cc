@@ -1,4 +1,4 @@
-#include "capture-client/slam/pnp_estimator.h"
+#include "vision/pose/pnp_estimator.h"
 
 #include <cmath>
 #include <limits>
@@ -7,7 +7,7 @@
 
 #include "common/geometry/rotation.h"
 
-namespace reenact::capture::slam {
+namespace reenact::vision {
 namespace {
 
 std::optional<Eigen::Isometry3d> ToPose(const cv::Mat& rvec, const cv::Mat& tvec) {
@@ -76,4 +76,4 @@ std::vector<double> PnpEstimator::Residuals(const Model& sensor_from_world,
   return out;
 }
 
-}  // namespace reenact::capture::slam
+}  // namespace reenact::vision

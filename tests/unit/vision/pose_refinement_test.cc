@@ -2,11 +2,11 @@
 
 #include <random>
 
-#include "capture-client/slam/pose_refinement.h"
+#include "vision/pose/pose_refinement.h"
 #include "common/error/check.h"
 #include "common/geometry/rotation.h"
 
-namespace reenact::capture::slam {
+namespace reenact::vision {
 namespace {
 
 constexpr double kF = 525;
@@ -90,4 +90,4 @@ TEST(SlamPoseRefinement, BadArgumentsAreBugs) {
 }
 
 }  // namespace
-}  // namespace reenact::capture::slam
+}  // namespace reenact::vision

@@ -1,4 +1,4 @@
-#include "capture-client/slam/feature_matching.h"
+#include "vision/features/feature_matching.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "common/error/check.h"
 
-namespace reenact::capture::slam {
+namespace reenact::vision {
 
 void MatchOptions::Check() const {
   REENACT_CHECK(std::isfinite(radius_px) && radius_px > 0, "radius_px must be > 0");
@@ -137,4 +137,4 @@ std::vector<FeatureMatch> MatchByDescriptor(const std::vector<MatchCandidate>& c
   return matches;
 }
 
-}  // namespace reenact::capture::slam
+}  // namespace reenact::vision

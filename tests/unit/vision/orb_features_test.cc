@@ -2,10 +2,10 @@
 
 #include <random>
 
-#include "capture-client/slam/orb_features.h"
+#include "vision/features/orb_features.h"
 #include "common/error/check.h"
 
-namespace reenact::capture::slam {
+namespace reenact::vision {
 namespace {
 
 PinholeCamera Camera() { return PinholeCamera::KinectLike(); }
@@ -124,4 +124,4 @@ TEST(SlamFeatures, BadInputAndOptionsAreBugs) {
 }
 
 }  // namespace
-}  // namespace reenact::capture::slam
+}  // namespace reenact::vision

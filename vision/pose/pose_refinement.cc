@@ -1,11 +1,11 @@
-#include "capture-client/slam/pose_refinement.h"
+#include "vision/pose/pose_refinement.h"
 
 #include <Eigen/Cholesky>
 #include <cmath>
 
 #include "common/error/check.h"
 
-namespace reenact::capture::slam {
+namespace reenact::vision {
 
 void PoseRefinementOptions::Check() const {
   REENACT_CHECK(rounds >= 1, "rounds must be >= 1");
@@ -110,4 +110,4 @@ PoseRefinementResult RefinePose(const Eigen::Isometry3d& initial_sensor_from_wor
   return result;
 }
 
-}  // namespace reenact::capture::slam
+}  // namespace reenact::vision

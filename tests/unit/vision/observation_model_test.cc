@@ -2,11 +2,11 @@
 
 #include <cmath>
 
-#include "capture-client/slam/observation_model.h"
+#include "vision/pose/observation_model.h"
 #include "common/error/check.h"
 #include "common/geometry/rotation.h"
 
-namespace reenact::capture::slam {
+namespace reenact::vision {
 namespace {
 
 constexpr double kFx = 520, kFy = 515;
@@ -104,4 +104,4 @@ TEST(SlamObservationModel, OptionsOutOfRangeAreRefused) {
 }
 
 }  // namespace
-}  // namespace reenact::capture::slam
+}  // namespace reenact::vision

@@ -11,7 +11,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
-namespace reenact::capture::slam {
+namespace reenact::vision {
 
 struct PnpEstimator {
   struct Sample {
@@ -29,4 +29,4 @@ struct PnpEstimator {
                                 const std::vector<Sample>& samples) const;
 };
 
-}  // namespace reenact::capture::slam
+}  // namespace reenact::vision

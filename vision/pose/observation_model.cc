@@ -1,4 +1,4 @@
-#include "capture-client/slam/observation_model.h"
+#include "vision/pose/observation_model.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include "common/error/check.h"
 #include "common/geometry/rotation.h"
 
-namespace reenact::capture::slam {
+namespace reenact::vision {
 
 void ObservationNoise::Check() const {
   REENACT_CHECK(std::isfinite(pixel_sigma_px) && pixel_sigma_px > 0, "pixel_sigma_px must be > 0");
@@ -75,4 +75,4 @@ Eigen::Isometry3d ApplyPoseUpdate(const Eigen::Matrix<double, 6, 1>& delta,
   return out;
 }
 
-}  // namespace reenact::capture::slam
+}  // namespace reenact::vision

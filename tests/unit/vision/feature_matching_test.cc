@@ -3,9 +3,9 @@
 #include <numbers>
 #include <random>
 
-#include "capture-client/slam/feature_matching.h"
+#include "vision/features/feature_matching.h"
 
-namespace reenact::capture::slam {
+namespace reenact::vision {
 namespace {
 
 cv::Mat Blocks(uint64_t seed) {
@@ -102,4 +102,4 @@ TEST(SlamMatching, DescriptorMatchingFindsTheSameKeypointsAndKeepsOnePerKeypoint
 }
 
 }  // namespace
-}  // namespace reenact::capture::slam
+}  // namespace reenact::vision

@@ -2,11 +2,11 @@
 
 #include <random>
 
-#include "capture-client/slam/pnp_estimator.h"
+#include "vision/pose/pnp_estimator.h"
 #include "common/estimate/ransac.h"
 #include "common/geometry/rotation.h"
 
-namespace reenact::capture::slam {
+namespace reenact::vision {
 namespace {
 
 Eigen::Isometry3d TruePose() {
@@ -93,4 +93,4 @@ TEST(SlamPnp, RansacFindsThePoseAmongOutliers) {
 }
 
 }  // namespace
-}  // namespace reenact::capture::slam
+}  // namespace reenact::vision

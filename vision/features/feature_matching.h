@@ -14,10 +14,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "capture-client/slam/orb_features.h"
+#include "vision/features/orb_features.h"
 #include "common/geometry/pinhole_camera.h"
 
-namespace reenact::capture::slam {
+namespace reenact::vision {
 
 struct MatchOptions {
   double radius_px = 15;      // search radius at level 0, pixels; > 0
@@ -68,4 +68,4 @@ std::vector<FeatureMatch> MatchByDescriptor(const std::vector<MatchCandidate>& c
                                             const FrameFeatures& features,
                                             const MatchOptions& options);
 
-}  // namespace reenact::capture::slam
+}  // namespace reenact::vision

@@ -18,11 +18,11 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "capture-client/slam/observation_model.h"
+#include "vision/pose/observation_model.h"
 #include "common/geometry/pinhole_camera.h"
 #include "common/image/image.h"
 
-namespace reenact::capture::slam {
+namespace reenact::vision {
 
 struct OrbFeatureOptions {
   int num_features = 1000;    // keypoints kept per frame, >= 1
@@ -66,4 +66,4 @@ FrameFeatures ExtractOrbFeatures(const cv::Mat& gray, const ImageDepthMm& depth,
 // Hamming distance between two 256-bit ORB descriptors.
 int DescriptorDistance(const uint8_t* a, const uint8_t* b);
 
-}  // namespace reenact::capture::slam
+}  // namespace reenact::vision

@@ -1,0 +1,158 @@
+#pragma once
+// The viewer's camera pose in the clip's world frame (the capture's SLAM map frame), from the
+// clip's relocalisation map (proto/clip/map_codec.h: background points with ORB
+// descriptors), frame after frame:
+//
+//  - relocalisation (no pose known, or the track was lost): the frame's ORB features
+//    (vision/features/orb_features.h) are matched against every map point by descriptor
+//    (Hamming distance <= reloc_max_distance, best < reloc_ratio * second best; OpenCV's
+//    brute-force matcher), the pose
+//    comes from PnP in RANSAC (vision/pose/pnp_estimator.h; inlier when the reprojection
+//    error is <= ransac_max_error_px), is refined on the inliers
+//    (vision/pose/pose_refinement.h: Levenberg-Marquardt on the reprojection error with
+//    Huber's loss), and is confirmed by guided matching as in tracking. It succeeds with at
+//    least reloc_min_inliers inliers;
+//  - tracking (the previous frame had a pose): the pose is predicted by constant velocity,
+//    viewer_from_world_pred = (T_{k-1} T_{k-2}^-1) T_{k-1} (or T_{k-1} after one posed frame),
+//    the map points are projected with the prediction and matched to the keypoints within
+//    search_radius_px of their projection (wide_search_radius_px when that finds too few),
+//    the pose is refined from the prediction, then matched again within half the search
+//    radius at the refined pose and refined once more. It succeeds with at least
+//    track_min_inliers inliers; otherwise the same frame is relocalised.
+//
+// Every processed frame ends in one state: relocalised (found from scratch), tracked (followed
+// from the previous frame) or lost (no pose; the next frame relocalises).
+//
+// Frames: viewer_from_world maps world points (metres) into the viewer camera's frame with
+// OpenCV axes (x right, y down, z forward). The camera model is the viewer's calibration
+// (distortion allowed: keypoints are undistorted, map points projected through it).
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <opencv2/features2d.hpp>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/error/expected.h"
+#include "common/geometry/pinhole_camera.h"
+#include "common/image/image.h"
+#include "proto/clip/map_codec.h"
+#include "vision/features/feature_matching.h"
+#include "vision/features/orb_features.h"
+#include "vision/pose/observation_model.h"
+#include "vision/pose/pose_refinement.h"
+
+namespace reenact::viewer {
+
+enum class RelocStatus { kRelocalised, kTracked, kLost };
+
+// "relocalised", "tracked", "lost".
+std::string_view RelocStatusName(RelocStatus status);
+
+struct RelocaliserOptions {
+  // ORB features per frame (the map's are OpenCV ORB with scale 1.2 and 8 levels; keep those).
+  // Default 1000 features; depth fields unused (the viewer has no depth).
+  vision::OrbFeatureOptions features;
+  // A map with fewer points is refused by Create; >= 4 (PnP needs 3 plus one to check).
+  // Default 50: with fewer, reloc_min_inliers can rarely be reached.
+  int min_map_points = 50;
+
+  // Relocalisation by descriptor: Hamming distance [0, 256], default 64; ratio (0, 1],
+  // default 0.8.
+  int reloc_max_distance = 64;
+  double reloc_ratio = 0.8;
+  // PnP RANSAC: inlier threshold in pixels (> 0, default 4), trials [1, 100000] (default
+  // 1000, adaptive below that), inliers needed to accept a relocalisation (>= 4, default 30).
+  double ransac_max_error_px = 4.0;
+  int ransac_max_iterations = 1000;
+  int reloc_min_inliers = 30;
+
+  // Tracking by projection: search radius in pixels around the projected map point (> 0,
+  // default 10), the wider radius tried when fewer than 2 track_min_inliers matches are
+  // found (>= search_radius_px, default 25); Hamming distance [0, 256] (default 80: the
+  // position already narrows the candidates); ratio (0, 1] (default 0.9); inliers needed to
+  // keep tracking (>= 4, default 25).
+  double search_radius_px = 10.0;
+  double wide_search_radius_px = 25.0;
+  int track_max_distance = 80;
+  double track_ratio = 0.9;
+  int track_min_inliers = 25;
+
+  // Keypoint noise of the refinement (pixel sigma at level 0 and the pyramid's scale; the
+  // depth terms are unused) and its rounds and iterations.
+  vision::ObservationNoise noise{.pixel_sigma_px = 1.0};
+  vision::PoseRefinementOptions refinement;
+  uint64_t seed = 1;  // RANSAC's random generator
+
+  // Throws CheckError when a field is out of range.
+  void Check() const;
+};
+
+struct RelocFrameResult {
+  RelocStatus status = RelocStatus::kLost;
+  // The pose (set unless lost).
+  std::optional<Eigen::Isometry3d> viewer_from_world;
+  int features = 0;    // ORB keypoints in the frame
+  int matches = 0;     // map point - keypoint matches the pose was estimated from
+  int inliers = 0;     // of them, consistent with the pose
+  double ms = 0;       // wall time of ProcessFrame, milliseconds
+  std::string reason;  // why the frame is lost (empty otherwise)
+};
+
+class Relocaliser {
+ public:
+  // Errors ("invalid_argument"): an empty map, a map with fewer than min_map_points points
+  // (the message says how many it has and needs), a camera that fails Check(). Throws
+  // CheckError for invalid options.
+  static Expected<Relocaliser> Create(proto::ClipMap map, const PinholeCamera& camera,
+                                      const RelocaliserOptions& options = {});
+
+  // One frame: CV_8UC1 (grey) or CV_8UC3 (BGR, as OpenCV decodes) of the camera's size.
+  // Errors ("invalid_argument"): an empty image, another size than the camera's (the message
+  // gives both), another pixel type. A frame without features is not an error: it is lost.
+  Expected<RelocFrameResult> ProcessFrame(const cv::Mat& image);
+  // The same for an RGB frame (common/image/image.h).
+  Expected<RelocFrameResult> ProcessFrame(const ImageRgb8& image);
+
+  // Move-only: the match candidates point into the map's descriptors.
+  Relocaliser(Relocaliser&&) = default;
+  Relocaliser& operator=(Relocaliser&&) = default;
+  Relocaliser(const Relocaliser&) = delete;
+  Relocaliser& operator=(const Relocaliser&) = delete;
+
+  // Forgets the track: the next frame relocalises from scratch.
+  void Reset();
+
+  const PinholeCamera& camera() const { return camera_; }
+  size_t map_size() const { return map_.points.size(); }
+
+ private:
+  struct Estimate {
+    Eigen::Isometry3d viewer_from_world = Eigen::Isometry3d::Identity();
+    int matches = 0;
+    int inliers = 0;
+  };
+
+  Relocaliser(proto::ClipMap map, const PinholeCamera& camera, const RelocaliserOptions& options);
+  Estimate Refine(const Eigen::Isometry3d& start, const vision::FrameFeatures& features,
+                  const std::vector<vision::FeatureMatch>& matches) const;
+  Estimate TrackFrom(const Eigen::Isometry3d& predicted, const vision::FrameFeatures& features,
+                     const vision::KeypointGrid& grid) const;
+  std::optional<Estimate> Relocalise(const vision::FrameFeatures& features,
+                                     const vision::KeypointGrid& grid, std::string& reason);
+
+  proto::ClipMap map_;
+  PinholeCamera camera_;
+  RelocaliserOptions options_;
+  std::vector<vision::MatchCandidate> candidates_;  // every map point, id = its index
+  cv::Mat map_descriptors_;                         // CV_8UC1, one 32-byte row per point
+  cv::Ptr<cv::DescriptorMatcher> matcher_;
+  ImageDepthMm no_depth_;                                // zeros: the viewer has no depth
+  std::optional<Eigen::Isometry3d> last_, before_last_;  // viewer_from_world of posed frames
+  uint64_t frames_ = 0;
+};
+
+}  // namespace reenact::viewer
