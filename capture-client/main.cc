@@ -4,6 +4,7 @@
 
 #include "capture-client/publish/clip_publisher.h"
 #include "capture-client/record/clip_recorder.h"
+#include "capture-client/skeleton/skeleton_track_spec.h"
 #include "capture-client/source/frame_source.h"
 #include "common/cli/command_line.h"
 #include "proto/clip/clip_directory.h"
@@ -14,8 +15,8 @@ using namespace reenact;
 
 constexpr const char* kUsage =
     "usage:\n"
-    "  reenact-capture record --source SRC --out DIR [--frames N] [--skeleton source]\n"
-    "                         [--title S] [--author S]\n"
+    "  reenact-capture record --source SRC --out DIR [--frames N] [--skeleton SKEL]\n"
+    "                         [--poses auto|slam] [--title S] [--author S]\n"
     "      SRC: synthetic:SCENARIO[?body=FILE.glb[&body_height=M]] | oni:FILE |\n"
     "           openni[:URI] | tum:DIR | clip:DIR\n"
     "      SCENARIO: turn-and-kick | raise-and-crouch | walk-handheld (moving sensor) |\n"
@@ -23,6 +24,11 @@ constexpr const char* kUsage =
     "                body=)\n"
     "      body=FILE.glb: a glTF skinned mesh (e.g. ../shared/data/models/CesiumMan.glb)\n"
     "                instead of the procedural body; body_height=M scales it\n"
+    "      SKEL: source (default: the source's own skeletons) | json:FILE | FILE.json |\n"
+    "            kinect:FILE (UTKinect, MSR Action3D skeleton3D, MSR DailyActivity3D), each\n"
+    "            with ?frame_offset=N, ?time_offset_s=S, ?tolerance_s=S\n"
+    "      --poses: auto (default) = the source's poses when it has them, else RGB-D SLAM;\n"
+    "               slam = SLAM even for sources with poses\n"
     "  reenact-capture info DIR\n"
     "  reenact-capture publish DIR --server URL --token T --lat DEG --lon DEG [--alt M]\n"
     "                          [--accuracy M] [--title S] [--retries N]\n"
@@ -39,14 +45,24 @@ int Record(const CommandLine& cl) {
   const auto frames = cl.GetInt("frames", -1);
   if (!frames.ok()) return Fail(frames.error());
   if (*frames == 0 || *frames < -1) return Fail(MakeError("usage", "--frames must be >= 1"));
-  if (cl.GetOr("skeleton", "source") != "source")
-    return Fail(MakeError("unsupported", "--skeleton " + *cl.Get("skeleton") +
-                                             ": only 'source' (the source's own skeletons) is "
-                                             "available in this build"));
+  capture::RecordOptions options;
+  const std::string poses = cl.GetOr("poses", "auto");
+  if (poses != "auto" && poses != "slam")
+    return Fail(MakeError("usage", "--poses " + poses + ": expected auto or slam"));
+  options.poses = poses == "slam" ? capture::PoseSource::kSlam : capture::PoseSource::kAuto;
+  std::optional<capture::SkeletonTrack> track;
+  if (const std::string skeleton = cl.GetOr("skeleton", "source"); skeleton != "source") {
+    auto loaded = capture::LoadSkeletonTrack(skeleton);
+    if (!loaded.ok()) return Fail(loaded.error());
+    track = std::move(loaded).value();
+    options.skeletons = [&track](int64_t index, double timestamp_s) {
+      return track->ForFrame(index, timestamp_s);
+    };
+    std::cout << "skeletons from " << track->description() << std::endl;
+  }
   auto source = capture::OpenFrameSource(*source_spec);
   if (!source.ok()) return Fail(source.error());
 
-  capture::RecordOptions options;
   options.max_frames = static_cast<int>(*frames);
   options.title = cl.GetOr("title", "");
   options.author = cl.GetOr("author", "");
@@ -59,6 +75,19 @@ int Record(const CommandLine& cl) {
       summary->frames, summary->seconds, summary->frame_bytes / 1024.0 / summary->frames,
       summary->map_points, summary->map_bytes / 1024.0, summary->representative_frame,
       summary->fitted_parts);
+  if (summary->slam_poses)
+    std::printf("poses by SLAM: %d keyframes, %d frames by the odometry fallback, %d "
+                "relocalised\n",
+                summary->slam_keyframes, summary->slam_fallback_frames,
+                summary->slam_relocalised_frames);
+  if (summary->frames < summary->source_frames)
+    std::printf("not stored: %d of %d source frames without a skeleton, %d without a pose\n",
+                summary->frames_without_skeleton, summary->source_frames,
+                summary->frames_without_pose);
+  if (summary->segmented_frames > 0 || summary->inconsistent_skeletons > 0)
+    std::printf("%d frames segmented; %d skeletons flagged by the consistency check (kept out "
+                "of the model and of texturing)\n",
+                summary->segmented_frames, summary->inconsistent_skeletons);
   return 0;
 }
 
@@ -82,6 +111,8 @@ int Info(const CommandLine& cl) {
   for (int p = 0; p < kBodyPartCount; ++p)
     std::printf(" %s=%.3f", std::string(PartName(static_cast<BodyPart>(p))).c_str(),
                 m.radius_ratio[p]);
+  std::printf("\nskeletons   %zu flagged by the consistency check (not used for texturing)",
+              m.flagged_skeleton_frames.size());
   std::printf("\nmap         %lld points, %llu bytes\n", static_cast<long long>(m.map.point_count),
               static_cast<unsigned long long>(m.map_part.bytes));
   std::printf("size        %llu bytes (%.1f KB per frame)\n",
@@ -136,7 +167,7 @@ int Publish(const CommandLine& cl) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const CommandLineSpec spec{{"source", "out", "frames", "skeleton", "title", "author", "server",
+  const CommandLineSpec spec{{"source", "out", "frames", "skeleton", "poses", "title", "author", "server",
                               "token", "lat", "lon", "alt", "accuracy", "retries"},
                              {}};
   return RunTool("reenact-capture", kUsage, spec,

@@ -1,13 +1,13 @@
 #include "capture-client/record/clip_recorder.h"
 
-#include "capture-client/segment/person_segmenter.h"
-#include "capture-client/segment/skeleton_consistency.h"
-
 #include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <memory>
 
+#include "capture-client/segment/person_segmenter.h"
+#include "capture-client/segment/skeleton_consistency.h"
+#include "capture-client/slam/rgbd_slam.h"
 #include "common/model/model_building.h"
 #include "proto/clip/clip_directory.h"
 #include "proto/clip/manifest.h"
@@ -15,6 +15,12 @@
 
 namespace reenact::capture {
 namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double MsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
 
 struct CropRect {
   int x = 0, y = 0, width = 0, height = 0;
@@ -58,19 +64,66 @@ std::string NowIso8601Utc() {
   return buf;
 }
 
-Status CheckFrameUsable(const SensorFrame& f, const SensorInfo& info, int index) {
-  const std::string where = "frame " + std::to_string(index) + " of " + info.description;
-  if (!f.world_from_sensor)
-    return MakeError("unsupported", where + " has no sensor pose; this build records only "
-                                            "sources that provide poses (SLAM arrives later)");
-  if (!f.skeleton_in_world)
-    return MakeError("unsupported", where + " has no skeleton; pass a source with skeletons");
+std::string FrameName(int index, const SensorInfo& info) {
+  return "frame " + std::to_string(index) + " of " + info.description;
+}
+
+Status CheckFrameSizes(const SensorFrame& f, const SensorInfo& info, int index) {
   if (f.color.channels != 3 || f.color.empty() || f.depth.width != f.color.width ||
       f.depth.height != f.color.height ||
       (f.person_mask &&
        (f.person_mask->width != f.color.width || f.person_mask->height != f.color.height)))
-    return MakeError("corrupt", where + ": colour, depth and mask sizes disagree");
+    return MakeError("corrupt", FrameName(index, info) + ": colour, depth and mask sizes disagree");
   return {};
+}
+
+// The frame's skeleton in the sensor frame, from the lookup or the source.
+Expected<std::optional<Skeleton>> SkeletonInSensor(const SensorFrame& f, const SensorInfo& info,
+                                                   int index, const RecordOptions& options) {
+  if (options.skeletons) {
+    std::optional<Skeleton> s = options.skeletons(index, f.timestamp_s);
+    const bool any_joint = s && std::any_of(s->confidence.begin(), s->confidence.end(),
+                                            [](double c) { return c > 0; });
+    return any_joint ? s : std::nullopt;
+  }
+  if (!f.skeleton_in_world) return std::optional<Skeleton>();
+  if (!f.world_from_sensor)
+    return MakeError("unsupported", FrameName(index, info) +
+                                        " has a world-frame skeleton but no sensor pose to "
+                                        "place it; pass --skeleton with a sensor-frame track");
+  return std::optional<Skeleton>(f.skeleton_in_world->Transformed(f.world_from_sensor->inverse()));
+}
+
+// The SLAM's options for this source: its rolling shutter, and the world anchored at the
+// first frame's known pose.
+slam::SlamOptions SlamOptionsFor(const RecordOptions& options, const SensorInfo& info,
+                                 const SensorFrame& first) {
+  slam::SlamOptions o = options.slam;
+  o.readout_ratio = info.color_readout_ratio;
+  if (info.depth_sigma_1m_m > 0) o.noise.depth_sigma_1m_m = info.depth_sigma_1m_m;
+  if (first.world_from_sensor) o.initial_world_from_sensor = *first.world_from_sensor;
+  return o;
+}
+
+// What the recorder keeps per stored frame until the model is built.
+struct StoredFrames {
+  std::vector<std::vector<uint8_t>> encoded;
+  std::vector<Skeleton> skeletons_in_sensor;
+  std::vector<bool> has_subject;
+};
+
+Error NothingStored(const RecordSummary& s, const SensorInfo& info) {
+  if (s.source_frames == s.frames_without_skeleton)
+    return MakeError("no_skeleton",
+                     "none of the " + std::to_string(s.source_frames) + " frames of " +
+                         info.description +
+                         " has a skeleton; pass --skeleton json:FILE or kinect:FILE with a "
+                         "skeleton track of the recording");
+  return MakeError("no_pose", "SLAM found no sensor pose for any of the " +
+                                  std::to_string(s.frames_without_pose) + " frames of " +
+                                  info.description +
+                                  " that have a skeleton (too few background features with "
+                                  "depth: is the depth stream empty, or the view featureless?)");
 }
 
 }  // namespace
@@ -83,64 +136,124 @@ void RecordOptions::Check() const {
   map.Check();
   model.Check();
   segment.Check();
+  slam.Check();
 }
 
 Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::path& out_dir,
                                    const RecordOptions& options) {
   options.Check();
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   const SensorInfo& info = source.info();
   if (std::error_code ec; std::filesystem::exists(out_dir, ec))
-    return MakeError("already_exists", out_dir.string() +
-                                           " already exists; remove it or choose another --out");
+    return MakeError("already_exists",
+                     out_dir.string() + " already exists; remove it or choose another --out");
 
-  std::vector<std::vector<uint8_t>> encoded;
-  std::vector<Skeleton> skeletons_in_sensor;
-  std::vector<bool> has_subject;
+  StoredFrames stored;
   BackgroundMapBuilder map_builder(options.map);
   PersonSegmenter segmenter(info.depth_camera, info.depth_scale_m, options.segment);
+  std::optional<slam::RgbdSlam> slam;
+  std::optional<Eigen::Vector3d> world_up = info.world_up;
   RecordSummary summary;
+  RecordStageTimes& times = summary.stage_times;
 
-  while (options.max_frames < 0 || static_cast<int>(encoded.size()) < options.max_frames) {
+  while (options.max_frames < 0 || summary.source_frames < options.max_frames) {
+    auto read_start = Clock::now();
     auto next = source.Next();
     if (!next.ok()) return next.error();
     if (!next->has_value()) break;
     const SensorFrame& f = **next;
-    const int index = static_cast<int>(encoded.size());
-    if (Status usable = CheckFrameUsable(f, info, index); !usable.ok()) return usable.error();
-    // Sources without a person mask (real sensors) are segmented from depth and skeleton; a
-    // frame where that finds nobody is kept without a subject.
+    const int index = summary.source_frames++;
+    times.source_ms.push_back(MsSince(read_start));
+    if (Status sizes = CheckFrameSizes(f, info, index); !sizes.ok()) return sizes.error();
+
+    if (index == 0) {
+      summary.slam_poses = options.poses == PoseSource::kSlam || !f.world_from_sensor;
+      if (summary.slam_poses)
+        slam.emplace(info.color_camera, info.depth_scale_m, SlamOptionsFor(options, info, f));
+      if (summary.slam_poses && f.world_from_sensor)
+        world_up = info.world_up;
+      else if (summary.slam_poses)
+        world_up.reset();
+    } else if (!summary.slam_poses && !f.world_from_sensor) {
+      return MakeError("corrupt", FrameName(index, info) +
+                                      " has no sensor pose although the frames before it had");
+    }
+
+    auto skeleton = SkeletonInSensor(f, info, index, options);
+    if (!skeleton.ok()) return skeleton.error();
+
+    // The person mask: the source's, else segmented (SLAM needs it before it tracks).
+    const auto segment_start = Clock::now();
     std::optional<ImageGray8> segmented;
-    if (!f.person_mask) {
-      auto segmentation = segmenter.SegmentFrame(f, info.world_up);
+    std::optional<Plane3> floor_in_sensor;
+    if (!f.person_mask && *skeleton) {
+      SegmentFrameGeometry geometry;
+      if (!summary.slam_poses) geometry = {f.world_from_sensor, info.world_up};
+      auto segmentation = segmenter.Segment(f.depth, **skeleton, geometry);
       if (!segmentation.ok()) return segmentation.error();
       segmented = std::move(segmentation->mask);
+      floor_in_sensor = segmentation->floor_in_sensor;
       ++summary.segmented_frames;
     }
-    const ImageGray8& person_mask = f.person_mask ? *f.person_mask : *segmented;
+    times.segment_ms.push_back(f.person_mask || !*skeleton ? 0.0 : MsSince(segment_start));
+    const ImageGray8* person_mask = f.person_mask ? &*f.person_mask
+                                    : segmented   ? &*segmented
+                                                  : nullptr;
 
-    const CropRect crop = SubjectCrop(person_mask, options.crop_margin_px);
+    std::optional<Eigen::Isometry3d> world_from_sensor = f.world_from_sensor;
+    const auto slam_start = Clock::now();
+    if (slam) {
+      auto tracked = slam->Track(f.timestamp_s, f.color, f.depth, person_mask);
+      if (!tracked.ok()) return tracked.error();
+      world_from_sensor = tracked->world_from_sensor;
+      summary.slam_keyframes += tracked->keyframe;
+      summary.slam_fallback_frames += tracked->status == slam::SlamStatus::kOdometryFallback;
+      summary.slam_relocalised_frames += tracked->status == slam::SlamStatus::kRelocalised;
+    }
+    times.slam_ms.push_back(slam ? MsSince(slam_start) : 0.0);
+
+    // Without a known up, the first floor that segmentation finds under a posed frame gives it.
+    if (!world_up && floor_in_sensor && world_from_sensor)
+      world_up = (world_from_sensor->linear() * floor_in_sensor->normal).normalized();
+
+    if (!world_from_sensor || !*skeleton) {
+      summary.frames_without_skeleton += !*skeleton;
+      summary.frames_without_pose += *skeleton && !world_from_sensor;
+      times.encode_ms.push_back(0);
+      times.map_ms.push_back(0);
+      continue;
+    }
+
+    const auto encode_start = Clock::now();
+    if (!person_mask) person_mask = &segmented.emplace(f.color.width, f.color.height, 1, 0);
+    const ImageGray8& mask = *person_mask;
+    const CropRect crop = SubjectCrop(mask, options.crop_margin_px);
     proto::ClipFrame frame;
     frame.timestamp_s = f.timestamp_s;
-    frame.world_from_sensor = *f.world_from_sensor;
-    frame.skeleton_in_world = *f.skeleton_in_world;
+    frame.world_from_sensor = *world_from_sensor;
+    frame.skeleton_in_world = (*skeleton)->Transformed(*world_from_sensor);
     frame.crop_x = crop.x;
     frame.crop_y = crop.y;
     frame.color = Crop(f.color, crop);
     frame.depth = Crop(f.depth, crop);
-    frame.mask = Crop(person_mask, crop);
-    encoded.push_back(proto::EncodeFrame(frame, options.codec));
-    summary.frame_bytes += encoded.back().size();
-    skeletons_in_sensor.push_back(
-        f.skeleton_in_world->Transformed(f.world_from_sensor->inverse()));
-    has_subject.push_back(std::any_of(frame.mask.data.begin(), frame.mask.data.end(),
-                                      [](uint8_t v) { return v > 127; }));
-    if (index % options.keyframe_interval == 0)
-      map_builder.AddKeyframe(f.color, f.depth, info.depth_scale_m, person_mask,
-                              info.color_camera, *f.world_from_sensor);
+    frame.mask = Crop(mask, crop);
+    stored.encoded.push_back(proto::EncodeFrame(frame, options.codec));
+    summary.frame_bytes += stored.encoded.back().size();
+    stored.skeletons_in_sensor.push_back(**skeleton);
+    stored.has_subject.push_back(std::any_of(frame.mask.data.begin(), frame.mask.data.end(),
+                                             [](uint8_t v) { return v > 127; }));
+    times.encode_ms.push_back(MsSince(encode_start));
+
+    const auto map_start = Clock::now();
+    if (!slam && index % options.keyframe_interval == 0)
+      map_builder.AddKeyframe(f.color, f.depth, info.depth_scale_m, mask, info.color_camera,
+                              *world_from_sensor);
+    times.map_ms.push_back(slam ? 0.0 : MsSince(map_start));
   }
-  if (encoded.empty())
+  if (summary.source_frames == 0)
     return MakeError("empty", "the source " + info.description + " yielded no frames");
+  if (stored.encoded.empty()) return NothingStored(summary, info);
+  summary.frames = static_cast<int>(stored.encoded.size());
 
   proto::ClipManifest manifest;
   manifest.title = options.title;
@@ -149,32 +262,37 @@ Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::p
   manifest.color_camera = info.color_camera;
   manifest.depth_camera = info.depth_camera;
   manifest.depth_scale_m = info.depth_scale_m;
-  manifest.world_up = info.world_up.value_or(Eigen::Vector3d(0, -1, 0));
-  manifest.frame_count = static_cast<int64_t>(encoded.size());
+  // Unknown up (no floor seen): the first stored frame's camera -y, right for a level sensor.
+  manifest.world_up = world_up.value_or(Eigen::Vector3d(0, -1, 0));
+  manifest.frame_count = summary.frames;
   manifest.frame_rate_hz = info.frame_rate_hz;
   manifest.radius_ratio = DefaultRadiusRatios();
 
   // Frames without a subject or with an inconsistent skeleton (bone lengths off the clip's
-  // medians, left and right swapped) stay out of the model. std::vector<bool> has no
-  // contiguous storage to view as a span.
-  const SkeletonConsistency consistency = CheckSkeletonConsistency(skeletons_in_sensor);
-  const auto usable = std::make_unique<bool[]>(has_subject.size());
-  for (size_t n = 0; n < has_subject.size(); ++n) {
-    usable[n] = has_subject[n] && consistency.frames[n].usable;
-    summary.inconsistent_skeletons += !consistency.frames[n].usable;
+  // medians, left and right swapped) stay out of the model; the inconsistent ones are flagged
+  // for the viewer. std::vector<bool> has no contiguous storage to view as a span.
+  const auto model_start = Clock::now();
+  const SkeletonConsistency consistency = CheckSkeletonConsistency(stored.skeletons_in_sensor);
+  const auto usable = std::make_unique<bool[]>(stored.has_subject.size());
+  for (size_t n = 0; n < stored.has_subject.size(); ++n) {
+    usable[n] = stored.has_subject[n] && consistency.frames[n].usable;
+    if (!consistency.frames[n].usable) {
+      ++summary.inconsistent_skeletons;
+      manifest.flagged_skeleton_frames.push_back(static_cast<int64_t>(n));
+    }
   }
   ModelBuildOptions model_options = options.model;
   model_options.fit.depth_scale_m = info.depth_scale_m;
   const ModelBuildResult model = BuildCylinderModel(
-      skeletons_in_sensor,
+      stored.skeletons_in_sensor,
       [&](int n) -> std::optional<ModelFrameImages> {
-        auto frame = proto::DecodeFrame(encoded[n]);
+        auto frame = proto::DecodeFrame(stored.encoded[n]);
         if (!frame.ok()) return std::nullopt;
         return ModelFrameImages{info.color_camera.Cropped(frame->crop_x, frame->crop_y,
                                                           frame->color.width, frame->color.height),
                                 std::move(frame->depth), std::move(frame->mask)};
       },
-      model_options, std::span<const bool>(usable.get(), has_subject.size()));
+      model_options, std::span<const bool>(usable.get(), stored.has_subject.size()));
   for (int p = 0; p < kBodyPartCount; ++p)
     manifest.radius_ratio[p] = std::clamp(model.radius_ratio[p], 0.02, 2.0);
   if (model.representative_frame) {
@@ -182,21 +300,22 @@ Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::p
     summary.representative_frame = *model.representative_frame;
   }
   summary.fitted_parts = model.fitted_count();
+  times.model_ms = MsSince(model_start);
 
-  proto::ClipMap map = std::move(map_builder).Finish();
+  const auto write_start = Clock::now();
+  proto::ClipMap map = slam ? slam->ExportClipMap() : std::move(map_builder).Finish();
   auto map_bytes = proto::EncodeMap(map, proto::MapCodecOptions{});
   if (!map_bytes.ok()) return map_bytes.error();
   manifest.map.point_count = static_cast<int64_t>(map.points.size());
-  proto::FillPartHashes(manifest, encoded, *map_bytes);
-  if (Status written = proto::WriteClipDirectory(out_dir, manifest, encoded, *map_bytes);
+  proto::FillPartHashes(manifest, stored.encoded, *map_bytes);
+  if (Status written = proto::WriteClipDirectory(out_dir, manifest, stored.encoded, *map_bytes);
       !written.ok())
     return written.error();
+  times.write_ms = MsSince(write_start);
 
-  summary.frames = static_cast<int>(encoded.size());
   summary.map_bytes = map_bytes->size();
   summary.map_points = map.points.size();
-  summary.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return summary;
 }
 

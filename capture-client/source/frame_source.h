@@ -25,6 +25,13 @@ struct SensorInfo {
   int frame_count = -1;          // frames the source will yield, -1 if unknown (live)
   // World frame's up direction if the source knows it (synthetic ground truth).
   std::optional<Eigen::Vector3d> world_up;
+  // Rolling shutter of the colour camera: readout time / frame interval in [0, 1]; 0 for a
+  // global shutter or rendered images. The SLAM compensates it (slam/rolling_shutter.h).
+  double color_readout_ratio = 0;
+  // Standard deviation of a depth reading at 1 m, metres (it grows with the square of the
+  // distance); 0 = unknown: the SLAM then keeps its default, made for real Kinect-class
+  // sensors, whose depth also suffers registration and timing errors.
+  double depth_sigma_1m_m = 0;
 };
 
 struct SensorFrame {

@@ -13,6 +13,7 @@
 #include "capture-client/source/frame_checks.h"
 #include "capture-client/source/oni_file_scan.h"
 #include "capture-client/source/openni_runtime.h"
+#include "capture-client/slam/rolling_shutter.h"
 #include "capture-client/source/source_argument.h"
 
 namespace reenact::capture {
@@ -404,6 +405,8 @@ Status SetUpStreams(OpenNiSource::Impl& impl, const std::string& registration_no
                                 ? std::min(impl.color_total, impl.depth_total)
                                 : -1;
   }
+  // Kinect v1 and the Xtion / Carmine class that OpenNI2 drives read colour out alike.
+  impl.info.color_readout_ratio = slam::kKinectV1ReadoutRatio;
   char summary[160];
   std::snprintf(summary, sizeof summary, " (%dx%d at %.0f Hz, ", impl.width, impl.height,
                 impl.info.frame_rate_hz);

@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "capture-client/slam/rolling_shutter.h"
 #include "capture-client/source/source_argument.h"
 
 namespace reenact::capture {
@@ -99,6 +100,7 @@ Expected<std::unique_ptr<TumSource>> TumSource::Open(const fs::path& dir,
   info.frame_count = static_cast<int>(frames.size());
   const double span = frames.back().color_time_s - frames.front().color_time_s;
   info.frame_rate_hz = frames.size() >= 2 && span > 0 ? (frames.size() - 1) / span : 30;
+  info.color_readout_ratio = slam::kKinectV1ReadoutRatio;  // every TUM RGB-D camera is one
   std::string camera_note;
   if (raw.distortion.IsZero())
     camera_note = "images undistorted at the source";

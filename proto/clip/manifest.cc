@@ -169,6 +169,18 @@ ClipManifest ManifestFromJson(const json& document) {
     map["descriptor"].Fail("= \"" + m.map.descriptor + "\" is not a known descriptor (\"" +
                            std::string(kMapDescriptorOrb256) + "\")");
 
+  if (root.Has("flagged_skeleton_frames")) {
+    const JsonField flagged = root["flagged_skeleton_frames"];
+    const size_t count = flagged.ExpectArray();
+    for (size_t i = 0; i < count; ++i) {
+      const int64_t n = flagged[i].IntegerIn(0, m.frame_count - 1);
+      if (!m.flagged_skeleton_frames.empty() && n <= m.flagged_skeleton_frames.back())
+        flagged[i].Fail("= " + std::to_string(n) + " is not above the entry before it (the list "
+                        "must be ascending without repeats)");
+      m.flagged_skeleton_frames.push_back(n);
+    }
+  }
+
   m.frame_parts.reserve(frame_parts);
   for (size_t i = 0; i < frame_parts; ++i) m.frame_parts.push_back(PartFromJson(frames[i]));
   m.map_part = PartFromJson(parts["map"]);
@@ -246,6 +258,7 @@ std::string SerializeManifest(const ClipManifest& m) {
       {"frame_rate_hz", m.frame_rate_hz},
       {"duration_s", m.DurationS()},
       {"map", {{"point_count", m.map.point_count}, {"descriptor", m.map.descriptor}}},
+      {"flagged_skeleton_frames", m.flagged_skeleton_frames},
       {"parts", {{"frames", frames}, {"map", PartToJson(m.map_part)}}},
   };
   return document.dump(2, ' ', false, json::error_handler_t::replace) + "\n";

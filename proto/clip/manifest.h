@@ -21,6 +21,7 @@
 //     "representative_frame": 0, "frame_count": 120, "frame_rate_hz": 30,
 //     "duration_s": 4.0,                                            (frame_count / rate)
 //     "map": {"point_count": 5000, "descriptor": "orb-256"},
+//     "flagged_skeleton_frames": [17, 18],                          (optional, default [])
 //     "parts": {"frames": [{"bytes": 12345, "sha256": "<64 hex>"}, ...],
 //               "map": {"bytes": 67890, "sha256": "<64 hex>"}}
 //   }
@@ -97,6 +98,10 @@ struct ClipManifest {
   int64_t frame_count = 0;           // >= 1, == frame_parts.size()
   double frame_rate_hz = 30;         // (0, 1000]
   MapSummary map;
+  // Frames whose skeleton failed the capture's consistency check (bone lengths off the clip's
+  // medians, left and right swapped): stored for the timeline, never chosen for texturing.
+  // Ascending, distinct, each in [0, frame_count). Optional in the JSON (absent = none).
+  std::vector<int64_t> flagged_skeleton_frames;
 
   std::vector<PartInfo> frame_parts;  // one per frame, in frame order
   PartInfo map_part;

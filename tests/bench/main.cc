@@ -7,6 +7,7 @@
 
 #include "common/cli/command_line.h"
 #include "proto/report/report_table.h"
+#include "tests/bench/capture_bench.h"
 #include "tests/bench/core_bench.h"
 #include "tests/bench/server_bench.h"
 #include "tests/bench/source_bench.h"
@@ -21,7 +22,8 @@ constexpr const char* kUsage =
     "                     groups: selection, mapping, render, model\n"
     "  reenact-bench server ...\n"
     "  reenact-bench sources [--oni FILE] [--tum DIR] [--repeats R] [--json FILE]\n"
-    "  reenact-bench capture|viewer ...   (not in this build yet)\n";
+    "  reenact-bench capture [--frames N] [--repeats R] [--tum DIR] [--json FILE]\n"
+    "  reenact-bench viewer ...   (not in this build yet)\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-bench", e); }
 
@@ -55,7 +57,7 @@ int Core(const CommandLine& cl) {
 int NotYet(const CommandLine& cl) {
   return Fail(MakeError("unsupported", "'" + cl.positionals()[0] +
                                            "' is not in this build yet: it arrives with the "
-                                           "capture and viewer work"));
+                                           "viewer work"));
 }
 
 }  // namespace
@@ -63,10 +65,10 @@ int NotYet(const CommandLine& cl) {
 int main(int argc, char** argv) {
   // Flags of every command; each command reads its own.
   const CommandLineSpec spec{
-      {"repeats", "only", "json", "clips", "clients", "seconds", "db", "oni", "tum"}, {"quick"}};
+      {"repeats", "only", "json", "clips", "clients", "seconds", "db", "oni", "tum", "frames"}, {"quick"}};
   return RunTool(
       "reenact-bench", kUsage, spec,
       {{"core", Core}, {"server", bench::RunServerBench},
-       {"sources", bench::RunSourceBench}, {"capture", NotYet}, {"viewer", NotYet}},
+       {"sources", bench::RunSourceBench}, {"capture", bench::RunCaptureBench}, {"viewer", NotYet}},
       argc, argv);
 }

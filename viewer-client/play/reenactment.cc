@@ -29,6 +29,8 @@ Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFr
     skeletons_in_sensor_.push_back(f.skeleton_in_world.Transformed(f.world_from_sensor.inverse()));
     usable_[n] = std::any_of(f.mask.data.begin(), f.mask.data.end(), [](uint8_t v) { return v > 127; });
   }
+  for (int64_t n : manifest_.flagged_skeleton_frames)
+    if (n >= 0 && n < manifest_.frame_count) usable_[n] = false;
   texture_index_ =
       TextureIndex(skeletons_in_sensor_, std::span<const bool>(usable_.get(), frames_.size()));
 }

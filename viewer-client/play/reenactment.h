@@ -51,7 +51,8 @@ class Reenactment {
   proto::ClipManifest manifest_;
   std::vector<proto::ClipFrame> frames_;
   std::vector<Skeleton> skeletons_in_sensor_;  // S_n = M_n S'_n
-  std::unique_ptr<bool[]> usable_;             // frames with a visible subject
+  // Frames with a visible subject whose skeleton the capture did not flag.
+  std::unique_ptr<bool[]> usable_;
   TextureIndex texture_index_;                 // Eq. 5 over usable S_n, exact as the scan
 };
 

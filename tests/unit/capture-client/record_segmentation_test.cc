@@ -73,6 +73,8 @@ TEST(RecordWithoutMasks, SegmentsEveryFrameAndKeepsTheBadSkeletonOutOfTheModel) 
   // segmentation requirement is IoU >= 0.9.
   const auto clip = proto::ReadClipDirectory(tmp.path() / "clip");
   ASSERT_TRUE(clip.ok()) << clip.error().message;
+  // The viewer learns which skeleton not to texture from.
+  EXPECT_EQ(clip->manifest().flagged_skeleton_frames, std::vector<int64_t>{kStretched});
   for (int k = 0; k < kFrames; k += 7) {
     const auto frame = clip->ReadFrame(k);
     ASSERT_TRUE(frame.ok()) << frame.error().message;

@@ -28,6 +28,7 @@ ClipManifest MakeManifest() {
   m.map = {5000, "orb-256"};
   m.frame_parts = {{100, std::string(64, 'a')}, {200, std::string(64, 'b')}, {300, std::string(64, 'c')}};
   m.map_part = {4096, std::string(64, 'f')};
+  m.flagged_skeleton_frames = {0, 2};
   return m;
 }
 
@@ -78,6 +79,7 @@ TEST(ClipManifest, RoundTripKeepsEveryField) {
   }
   EXPECT_EQ(r.map_part.bytes, 4096u);
   EXPECT_EQ(r.map_part.sha256, m.map_part.sha256);
+  EXPECT_EQ(r.flagged_skeleton_frames, m.flagged_skeleton_frames);
 }
 
 TEST(ClipManifest, WritesTheDocumentedLayout) {
@@ -100,6 +102,15 @@ TEST(ClipManifest, HeadingIsOptional) {
   const auto parsed = ParseManifest(text);
   ASSERT_TRUE(parsed.ok()) << parsed.error().message;
   EXPECT_FALSE(parsed->location.heading_deg.has_value());
+}
+
+TEST(ClipManifest, FlaggedSkeletonFramesAreOptional) {
+  // Manifests written before the field existed have none flagged.
+  json j = json::parse(SerializeManifest(MakeManifest()));
+  j.erase("flagged_skeleton_frames");
+  const auto parsed = ParseManifest(j.dump());
+  ASSERT_TRUE(parsed.ok()) << parsed.error().message;
+  EXPECT_TRUE(parsed->flagged_skeleton_frames.empty());
 }
 
 // Serialises the good manifest, lets `edit` break it, and returns the parse error.
@@ -165,6 +176,18 @@ TEST(ClipManifest, RejectsZeroFrames) {
 TEST(ClipManifest, RejectsRepresentativeFrameOutOfRange) {
   const Error e = ParseEdited([](json& j) { j["representative_frame"] = 3; });
   EXPECT_EQ(e.message, "manifest: representative_frame = 3 is outside [0, 2]");
+}
+
+TEST(ClipManifest, RejectsFlaggedFrameOutOfRange) {
+  const Error e = ParseEdited([](json& j) { j["flagged_skeleton_frames"] = {0, 3}; });
+  EXPECT_NE(e.message.find("flagged_skeleton_frames[1] = 3 is outside [0, 2]"), std::string::npos)
+      << e.message;
+}
+
+TEST(ClipManifest, RejectsFlaggedFramesOutOfOrder) {
+  const Error e = ParseEdited([](json& j) { j["flagged_skeleton_frames"] = {2, 2}; });
+  EXPECT_NE(e.message.find("flagged_skeleton_frames[1] = 2 is not above"), std::string::npos)
+      << e.message;
 }
 
 TEST(ClipManifest, RejectsRadiusRatioOutOfRange) {

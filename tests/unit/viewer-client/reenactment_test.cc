@@ -11,8 +11,9 @@ namespace {
 
 // A clip of a person turning in place in front of a static sensor at the world origin
 // (world = sensor frame), yaw 0, 10, ..., 350 degrees, each frame's crop a flat 4x4 patch.
-Reenactment TurningClip() {
+Reenactment TurningClip(std::vector<int64_t> flagged_skeleton_frames = {}) {
   proto::ClipManifest manifest;
+  manifest.flagged_skeleton_frames = std::move(flagged_skeleton_frames);
   manifest.color_camera = PinholeCamera::KinectLike();
   manifest.depth_camera = manifest.color_camera;
   manifest.radius_ratio = DefaultRadiusRatios();
@@ -82,6 +83,16 @@ TEST(Reenactment, ViewerBehindTheSubjectSeesTheFrameTurnedHalfWay) {
   const ReenactedFrame f =
       r.Build(2, PinholeCamera::KinectLike(), world_from_viewer.inverse(), [](int n) { return n; });
   EXPECT_EQ(f.texture_frame, 2 + 18);  // 20 + 180 degrees
+}
+
+TEST(Reenactment, FramesWithFlaggedSkeletonsAreNeverChosen) {
+  // At the sensor the best frame for output frame 2 is frame 2 itself (the test above);
+  // flagged, it must give way to a neighbour 10 degrees off.
+  const Reenactment r = TurningClip({2});
+  const int chosen = r.Build(2, PinholeCamera::KinectLike(), Eigen::Isometry3d::Identity(),
+                             [](int n) { return n; })
+                         .texture_frame;
+  EXPECT_TRUE(chosen == 1 || chosen == 3) << chosen;
 }
 
 TEST(Reenactment, FramesWithoutVisibleSubjectAreNeverChosen) {
