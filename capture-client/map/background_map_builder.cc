@@ -25,10 +25,15 @@ int Hamming(const std::array<uint8_t, 32>& a, const uint8_t* b) {
 
 }  // namespace
 
+vision::OrbFeatureOptions DefaultMapFeatures() {
+  vision::OrbFeatureOptions o;
+  o.max_depth_m = 8.0;
+  o.subpixel = true;
+  return o;
+}
+
 void BackgroundMapOptions::Check() const {
-  REENACT_CHECK(features_per_keyframe >= 1, "features_per_keyframe must be >= 1");
-  REENACT_CHECK(mask_dilation_px >= 0, "mask_dilation_px must be >= 0");
-  REENACT_CHECK(min_depth_m > 0 && max_depth_m > min_depth_m, "need 0 < min_depth < max_depth");
+  features.Check();
   REENACT_CHECK(merge_radius_m > 0, "merge_radius_m must be > 0");
   REENACT_CHECK(merge_max_hamming >= 0 && merge_max_hamming <= 256, "merge_max_hamming in [0,256]");
   REENACT_CHECK(max_points >= 1, "max_points must be >= 1");
@@ -47,39 +52,14 @@ void BackgroundMapBuilder::AddKeyframe(const ImageRgb8& color, const ImageDepthM
   const cv::Mat rgb(color.height, color.width, CV_8UC3, const_cast<uint8_t*>(color.data.data()));
   cv::Mat gray;
   cv::cvtColor(rgb, gray, cv::COLOR_RGB2GRAY);
-  cv::Mat allowed(color.height, color.width, CV_8UC1, cv::Scalar(255));
-  if (!person_mask.empty()) {
-    REENACT_CHECK(person_mask.width == color.width && person_mask.height == color.height,
-                  "mask must match the colour image");
-    cv::Mat person(person_mask.height, person_mask.width, CV_8UC1,
-                   const_cast<uint8_t*>(person_mask.data.data()));
-    cv::Mat grown;
-    const int k = 2 * options_.mask_dilation_px + 1;
-    cv::dilate(person > 127, grown, cv::getStructuringElement(cv::MORPH_ELLIPSE, {k, k}));
-    allowed.setTo(0, grown);
-  }
-  cv::Ptr<cv::ORB> orb = cv::ORB::create(options_.features_per_keyframe);
-  std::vector<cv::KeyPoint> keypoints;
-  cv::Mat descriptors;
-  orb->detectAndCompute(gray, allowed, keypoints, descriptors);
-  // OpenCV places a level's pixel x_l at x_l s (s = scale^octave), biased by (s - 1) / 2
-  // towards the top-left; its centre lies at (x_l + 1/2) s - 1/2 (as vision/features does).
-  for (cv::KeyPoint& kp : keypoints) {
-    const float half = 0.5f * (std::pow(orb->getScaleFactor(), static_cast<float>(kp.octave)) - 1);
-    kp.pt.x += half;
-    kp.pt.y += half;
-  }
+  const vision::FrameFeatures features =
+      vision::ExtractOrbFeatures(gray, depth, depth_scale_m, &person_mask, camera, options_.features);
 
   const double cell = options_.merge_radius_m;
-  for (size_t i = 0; i < keypoints.size() && map_.points.size() < options_.max_points; ++i) {
-    const int x = static_cast<int>(std::lround(keypoints[i].pt.x));
-    const int y = static_cast<int>(std::lround(keypoints[i].pt.y));
-    if (!depth.Contains(x, y) || depth.at(x, y) == 0) continue;
-    const double z = depth.at(x, y) * depth_scale_m;
-    if (z < options_.min_depth_m || z > options_.max_depth_m) continue;
-    const Eigen::Vector3d p = world_from_sensor *
-                              camera.Unproject({keypoints[i].pt.x, keypoints[i].pt.y}, z);
-    const uint8_t* desc = descriptors.ptr<uint8_t>(static_cast<int>(i));
+  for (size_t i = 0; i < features.size() && map_.points.size() < options_.max_points; ++i) {
+    if (features.observations[i].depth_m <= 0) continue;
+    const Eigen::Vector3d p = world_from_sensor * features.points_in_camera[i];
+    const uint8_t* desc = features.Descriptor(i);
 
     const int vx = static_cast<int>(std::floor(p.x() / cell));
     const int vy = static_cast<int>(std::floor(p.y() / cell));

@@ -1,8 +1,8 @@
 #pragma once
 // Builds the clip's relocalisation map from keyframes: ORB features on the static background
 // only (the person mask, dilated, is excluded so the moving subject never enters the map),
-// lifted to 3D with the registered depth and moved into the world frame with the keyframe's
-// pose. A feature that lands within merge_radius_m of an existing map point with a similar
+// lifted to 3D with the registered depth where it is reliable (vision/features/orb_features.h)
+// and moved into the world frame with the keyframe's pose. A feature that lands within merge_radius_m of an existing map point with a similar
 // descriptor (Hamming distance <= merge_max_hamming) counts as another observation of it.
 
 #include <unordered_map>
@@ -10,16 +10,20 @@
 #include <Eigen/Geometry>
 
 #include "common/geometry/pinhole_camera.h"
+#include "vision/features/orb_features.h"
 #include "common/image/image.h"
 #include "proto/clip/map_codec.h"
 
 namespace reenact::capture {
 
+// The map's features: ORB spread over the image, depth off depth edges, sub-pixel keypoints
+// (a map point's position is only as good as its keypoint: a pixel is 1 cm at 5 m).
+vision::OrbFeatureOptions DefaultMapFeatures();
+
 struct BackgroundMapOptions {
-  int features_per_keyframe = 1000;  // ORB features detected per keyframe, >= 1
-  int mask_dilation_px = 15;         // person mask grown by this many pixels, >= 0
-  double min_depth_m = 0.3;          // depth range accepted for map points, metres
-  double max_depth_m = 8.0;
+  // Features per keyframe (vision/features/orb_features.h); num_features (default 1000),
+  // mask_dilation_px (15: the person mask grown), depth range (0.3-8 m), subpixel (on).
+  vision::OrbFeatureOptions features = DefaultMapFeatures();
   double merge_radius_m = 0.02;      // > 0
   int merge_max_hamming = 64;        // [0, 256]
   size_t max_points = 50000;         // the map keeps at most this many points

@@ -54,8 +54,9 @@ std::string_view RelocStatusName(RelocStatus status);
 
 struct RelocaliserOptions {
   // ORB features per frame (the map's are OpenCV ORB with scale 1.2 and 8 levels; keep those).
-  // Default 1000 features; depth fields unused (the viewer has no depth).
-  vision::OrbFeatureOptions features;
+  // Default 1000 features, sub-pixel keypoints as the map's (capture-client's
+  // DefaultMapFeatures); depth fields unused (the viewer has no depth).
+  vision::OrbFeatureOptions features{.subpixel = true};
   // A map with fewer points is refused by Create; >= 4 (PnP needs 3 plus one to check).
   // Default 50: with fewer, reloc_min_inliers can rarely be reached.
   int min_map_points = 50;
