@@ -12,7 +12,7 @@
 namespace reenact::capture::slam {
 
 struct SlamOptions {
-  OrbFeatureOptions features;
+  OrbFeatureOptions features{.subpixel = true};
   ObservationNoise noise;  // its scale_factor is taken from features.scale_factor
   PoseRefinementOptions pose_refinement;
   BundleOptions bundle_adjustment;

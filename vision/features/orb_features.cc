@@ -46,8 +46,10 @@ int DescriptorDistance(const uint8_t* a, const uint8_t* b) {
 namespace {
 
 // Sub-pixel corner (OrbFeatureOptions::subpixel); a keypoint whose refinement leaves its
-// window keeps its position.
-void RefineKeypoint(const cv::Mat& gray, double scale_factor, cv::KeyPoint& kp) {
+// window, or enters the excluded (person) area, keeps its position. allowed: empty or
+// CV_8UC1 of the image's size, 0 = excluded.
+void RefineKeypoint(const cv::Mat& gray, const cv::Mat& allowed, double scale_factor,
+                    cv::KeyPoint& kp) {
   const float s = std::pow(static_cast<float>(scale_factor), kp.octave);
   const int half_window = std::max(2, static_cast<int>(std::lround(2 * s)));
   if (kp.pt.x < half_window + 1 || kp.pt.y < half_window + 1 ||
@@ -57,8 +59,11 @@ void RefineKeypoint(const cv::Mat& gray, double scale_factor, cv::KeyPoint& kp) 
   const cv::TermCriteria criteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 10, 0.01);
   cv::cornerSubPix(gray, point, {half_window, half_window}, {-1, -1}, criteria);
   const float dx = point[0].x - kp.pt.x, dy = point[0].y - kp.pt.y;
-  if (std::isfinite(dx) && std::isfinite(dy) && dx * dx + dy * dy <= 4 * s * s)
-    kp.pt = point[0];
+  if (!std::isfinite(dx) || !std::isfinite(dy) || dx * dx + dy * dy > 4 * s * s) return;
+  const int x = static_cast<int>(std::lround(point[0].x)),
+            y = static_cast<int>(std::lround(point[0].y));
+  if (!allowed.empty() && allowed.at<uint8_t>(y, x) == 0) return;
+  kp.pt = point[0];
 }
 
 
@@ -165,7 +170,7 @@ FrameFeatures ExtractOrbFeatures(const cv::Mat& gray, const ImageDepthMm& depth,
     const float half = 0.5f * (std::pow(static_cast<float>(options.scale_factor), kp.octave) - 1);
     kp.pt.x += half;
     kp.pt.y += half;
-    if (options.subpixel) RefineKeypoint(gray, options.scale_factor, kp);
+    if (options.subpixel) RefineKeypoint(gray, allowed, options.scale_factor, kp);
     candidate_descriptors.row(kept[k]).copyTo(out.descriptors.row(static_cast<int>(k)));
     KeypointObservation obs;
     obs.normalized = camera.Undistort({kp.pt.x, kp.pt.y});
