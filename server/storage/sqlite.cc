@@ -132,6 +132,13 @@ Statement& Statement::BindBlob(int index, std::string_view bytes) {
   return *this;
 }
 
+Statement& Statement::BindBlobInPlace(int index, std::string_view bytes) {
+  REENACT_CHECK(
+      sqlite3_bind_blob64(stmt_, index, bytes.data(), bytes.size(), SQLITE_STATIC) == SQLITE_OK,
+      "bad bind index");
+  return *this;
+}
+
 Statement& Statement::BindNull(int index) {
   REENACT_CHECK(sqlite3_bind_null(stmt_, index) == SQLITE_OK, "bad bind index");
   return *this;

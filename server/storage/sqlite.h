@@ -40,6 +40,8 @@ class Database {
   // Rows changed by the last INSERT/UPDATE/DELETE.
   int Changes() const;
   const std::string& path() const { return path_; }
+  // The underlying connection, for code in server/storage/ that needs the C API.
+  sqlite3* raw() const { return db_; }
 
  private:
   Database(sqlite3* db, std::string path) : db_(db), path_(std::move(path)) {}
@@ -63,6 +65,9 @@ class Statement {
   Statement& Bind(int index, double value);
   Statement& BindText(int index, std::string_view value);
   Statement& BindBlob(int index, std::string_view bytes);
+  // As BindBlob, but SQLite reads the bytes in place instead of copying them first: they
+  // must stay valid and unchanged until the statement is run and reset or destroyed.
+  Statement& BindBlobInPlace(int index, std::string_view bytes);
   Statement& BindNull(int index);
 
   // Advances: true when a row is available, false when done.

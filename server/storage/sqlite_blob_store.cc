@@ -9,7 +9,11 @@ Expected<std::unique_ptr<SqliteBlobStore>> SqliteBlobStore::Open(const std::stri
   if (!probe) {
     return MakeError("storage", "database " + path + " has no blobs table; apply migrations first");
   }
-  return std::unique_ptr<SqliteBlobStore>(new SqliteBlobStore(std::move(*db)));
+  auto checkpointer = sqlite::WalCheckpointer::ForFile(path);
+  if (!checkpointer) return checkpointer.error();
+  (*checkpointer)->Attach(*db);
+  return std::unique_ptr<SqliteBlobStore>(
+      new SqliteBlobStore(std::move(*checkpointer), std::move(*db)));
 }
 
 Status SqliteBlobStore::Put(const std::string& key, std::string_view bytes) {
@@ -17,7 +21,7 @@ Status SqliteBlobStore::Put(const std::string& key, std::string_view bytes) {
   auto stmt = db_.Prepare("INSERT INTO blobs(key, data) VALUES (?1, ?2) "
                           "ON CONFLICT(key) DO UPDATE SET data = excluded.data");
   if (!stmt) return stmt.error();
-  stmt->BindText(1, key).BindBlob(2, bytes);
+  stmt->BindText(1, key).BindBlobInPlace(2, bytes);  // `bytes` outlives the statement
   return stmt->Run();
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // BlobStore in the server's SQLite database (table blobs). Uses its own connection, so large
 // payload writes do not hold the metadata connection's mutex. The schema must already exist
-// (open SqliteMetadataStore first, which applies the migrations).
+// (open SqliteMetadataStore first, which applies the migrations). WAL checkpoints run on the
+// file's WalCheckpointer thread, not in Put().
 
 #include <memory>
 #include <mutex>
@@ -9,6 +10,7 @@
 
 #include "server/storage/blob_store.h"
 #include "server/storage/sqlite.h"
+#include "server/storage/wal_checkpointer.h"
 
 namespace reenact::server {
 
@@ -21,9 +23,11 @@ class SqliteBlobStore : public BlobStore {
   Status DeletePrefix(const std::string& prefix) override;
 
  private:
-  explicit SqliteBlobStore(sqlite::Database db) : db_(std::move(db)) {}
+  SqliteBlobStore(std::shared_ptr<sqlite::WalCheckpointer> checkpointer, sqlite::Database db)
+      : checkpointer_(std::move(checkpointer)), db_(std::move(db)) {}
 
   std::mutex mutex_;
+  std::shared_ptr<sqlite::WalCheckpointer> checkpointer_;  // outlives db_
   sqlite::Database db_;
 };
 

@@ -8,11 +8,13 @@
 #include <atomic>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "server/storage/metadata_store.h"
 #include "server/storage/sqlite.h"
+#include "server/storage/wal_checkpointer.h"
 
 namespace reenact::server {
 
@@ -45,11 +47,13 @@ class SqliteMetadataStore : public MetadataStore {
     explicit Reader(sqlite::Database database) : db(std::move(database)) {}
     std::mutex mutex;
     sqlite::Database db;
+    std::optional<sqlite::Statement> nearby;  // compiled on first use, then reused
   };
 
   explicit SqliteMetadataStore(sqlite::Database db) : db_(std::move(db)) {}
 
   std::mutex mutex_;
+  std::shared_ptr<sqlite::WalCheckpointer> checkpointer_;  // outlives db_
   sqlite::Database db_;
   std::vector<std::unique_ptr<Reader>> readers_;  // empty: reads use db_
   std::atomic<unsigned> next_reader_{0};
