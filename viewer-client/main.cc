@@ -5,7 +5,9 @@
 
 #include "common/cli/command_line.h"
 #include "proto/api/api_client.h"
+#include "viewer-client/camera/camera_source.h"
 #include "viewer-client/fetch/clip_fetcher.h"
+#include "viewer-client/play/ar_player.h"
 #include "viewer-client/play/headless_player.h"
 #include "viewer-client/play/window_player.h"
 
@@ -18,7 +20,11 @@ constexpr const char* kUsage =
     "  reenact-viewer browse --server URL --near LAT,LON [--radius-m M] [--limit N] [--json]\n"
     "  reenact-viewer play CLIP_ID --server URL [--camera orbit] [--orbit-deg D]\n"
     "                      [--headless --out DIR] [--frames N] [--width W --height H]\n"
-    "                      [--cache DIR] [--bare] [--skeleton] [--masks] [--no-mp4]\n";
+    "                      [--cache DIR] [--bare] [--skeleton] [--masks] [--no-mp4]\n"
+    "  reenact-viewer play CLIP_ID --server URL --camera tum:DIR|video:FILE|live[:N]\n"
+    "                      [--calibration FILE] [--clip-clock time|frames] --headless --out DIR\n"
+    "                      [--frames N] [--cache DIR] [--bare] [--skeleton] [--masks] [--no-mp4]\n"
+    "                      [--no-status]\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-viewer", e); }
 
@@ -53,16 +59,75 @@ int Browse(const CommandLine& cl) {
   return 0;
 }
 
+// AR: the reenactment over the viewer's own camera (viewer-client/play/ar_player.h).
+int PlayAr(const CommandLine& cl, const std::string& clip_id, const std::string& server,
+           const std::string& camera_spec) {
+  if (camera_spec.rfind("synthetic:", 0) == 0)
+    return Fail(MakeError("unsupported", "--camera " + camera_spec +
+                                             ": synthetic viewers run in reenact-eval reloc"));
+  if (!cl.Has("headless"))
+    return Fail(MakeError(
+        "unsupported", "--camera " + camera_spec +
+                           ": the AR presentation is headless for now: add --headless --out DIR"));
+  for (const char* flag : {"width", "height", "orbit-deg"})
+    if (cl.Get(flag))
+      return Fail(MakeError(
+          "usage",
+          std::string("--") + flag + " is for --camera orbit; AR output has the camera's size"));
+  viewer::ArPlayOptions options;
+  const auto out = cl.Require("out");
+  if (!out.ok()) return Fail(MakeError("usage", "--headless needs --out DIR"));
+  options.out_dir = *out;
+  const auto frames = cl.GetInt("frames", -1);
+  if (!frames.ok()) return Fail(frames.error());
+  if (*frames == 0 || *frames < -1) return Fail(MakeError("usage", "--frames must be >= 1"));
+  options.max_frames = static_cast<int>(*frames);
+  const std::string clock = cl.GetOr("clip-clock", "time");
+  if (clock != "time" && clock != "frames")
+    return Fail(MakeError("usage", "--clip-clock must be 'time' or 'frames', not '" + clock + "'"));
+  options.frame.clock =
+      clock == "time" ? viewer::ClipClock::kCameraTime : viewer::ClipClock::kFrameIndex;
+  options.frame.textured = !cl.Has("bare");
+  options.frame.draw_skeleton = cl.Has("skeleton");
+  options.frame.draw_status = !cl.Has("no-status");
+  options.write_mp4 = !cl.Has("no-mp4");
+  options.write_masks = cl.Has("masks");
+  std::optional<std::filesystem::path> calibration;
+  if (auto c = cl.Get("calibration")) calibration = *c;
+
+  auto source = viewer::OpenCameraSource(camera_spec, calibration);
+  if (!source.ok()) return Fail(source.error());
+  const proto::ApiClient api(server, "");
+  auto clip = viewer::FetchClip(api, clip_id, cl.GetOr("cache", ".cache/reenact-viewer"));
+  if (!clip.ok()) return Fail(clip.error());
+  const viewer::Reenactment reenactment(clip->manifest, std::move(clip->frames));
+  const auto summary =
+      viewer::PlayArHeadless(reenactment, std::move(clip->map), **source, clip_id, options);
+  if (!summary.ok()) return Fail(summary.error());
+  std::printf(
+      "composited %d camera frames from %s: %d relocalised, %d tracked, %d lost; relocaliser "
+      "%.1f ms, render %.1f ms per frame (medians), %.1f s in all\n",
+      summary->frames, (*source)->description().c_str(), summary->relocalised, summary->tracked,
+      summary->lost, summary->reloc_ms_median, summary->render_ms_median, summary->seconds);
+  std::printf("wrote %s/frames/, %s/contact_sheet.png%s, %s/render.json\n",
+              options.out_dir.string().c_str(), options.out_dir.string().c_str(),
+              summary->mp4_path.empty() ? "" : (", " + summary->mp4_path).c_str(),
+              options.out_dir.string().c_str());
+  if (!summary->mp4_warning.empty())
+    std::cerr << "reenact-viewer: warning: no MP4 written: " << summary->mp4_warning << "\n";
+  if (summary->lost == summary->frames)
+    std::cerr << "reenact-viewer: warning: every frame was lost: the camera never saw the clip's "
+                 "scene (render.json gives each frame's reason)\n";
+  return 0;
+}
+
 int Play(const CommandLine& cl) {
   if (cl.positionals().size() != 2) return Fail(MakeError("usage", "play needs a CLIP_ID"));
   const std::string clip_id = cl.positionals()[1];
   const auto server = cl.Require("server");
   if (!server.ok()) return Fail(server.error());
   const std::string camera = cl.GetOr("camera", "orbit");
-  if (camera != "orbit")
-    return Fail(MakeError("unsupported", "--camera " + camera +
-                                             ": this build has only the orbit camera "
-                                             "(relocalised cameras arrive with the viewer work)"));
+  if (camera != "orbit") return PlayAr(cl, clip_id, *server, camera);
   viewer::HeadlessPlayOptions options;
   const auto frames = cl.GetInt("frames", -1);
   if (!frames.ok()) return Fail(frames.error());
@@ -120,8 +185,9 @@ int Play(const CommandLine& cl) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const CommandLineSpec spec{{"server", "near", "radius-m", "limit", "camera", "orbit-deg", "out",
-                              "frames", "width", "height", "cache"},
-                             {"json", "headless", "bare", "skeleton", "no-mp4", "masks"}};
+  const CommandLineSpec spec{
+      {"server", "near", "radius-m", "limit", "camera", "orbit-deg", "out", "frames", "width",
+       "height", "cache", "calibration", "clip-clock"},
+      {"json", "headless", "bare", "skeleton", "no-mp4", "masks", "no-status"}};
   return RunTool("reenact-viewer", kUsage, spec, {{"browse", Browse}, {"play", Play}}, argc, argv);
 }

@@ -138,6 +138,29 @@ TEST(BadInput, PlayWithServerDownFailsClearly) {
   ExpectOneLineError(r, "cannot reach server");
 }
 
+// AR play: the viewer's camera is opened before the clip is fetched, so these need no server.
+TEST(BadInput, ArCameraWithoutFramesFailsClearly) {
+  TempDir tmp;
+  std::filesystem::create_directories(tmp.path() + "/seq");
+  std::ofstream(tmp.path() + "/seq/rgb.txt") << "# timestamp filename\n";
+  const auto r = RunProcess(
+      {kViewer, "play", "abc", "--server", "http://127.0.0.1:1", "--camera",
+       "tum:" + tmp.path() + "/seq", "--calibration",
+       std::string(REENACT_SOURCE_DIR) + "/docs/calibration/tum-fr1.yaml", "--headless", "--out",
+       tmp.path() + "/out", "--cache", tmp.path() + "/c"},
+      kQuick);
+  ExpectOneLineError(r, "no frame");
+}
+
+TEST(BadInput, ArCameraWithoutCalibrationNamesTheFlag) {
+  TempDir tmp;
+  const auto r = RunProcess({kViewer, "play", "abc", "--server", "http://127.0.0.1:1", "--camera",
+                             "video:" + tmp.path() + "/v.mp4", "--headless", "--out",
+                             tmp.path() + "/out"},
+                            kQuick);
+  ExpectOneLineError(r, "--calibration");
+}
+
 TEST(BadInput, PublishWithServerDownFailsClearlyAndKeepsTheClip) {
   TempDir tmp;
   const std::string clip = tmp.path() + "/clip";

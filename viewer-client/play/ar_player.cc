@@ -1,0 +1,300 @@
+#include "viewer-client/play/ar_player.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "common/error/check.h"
+#include "viewer-client/output/contact_sheet.h"
+#include "viewer-client/output/mp4_writer.h"
+#include "viewer-client/output/png_writer.h"
+
+namespace reenact::viewer {
+namespace {
+
+std::string SizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+cv::Mat Wrap(ImageRgb8& image) {
+  return cv::Mat(image.height, image.width, CV_8UC3, image.data.data());
+}
+
+// The camera image as an ideal pinhole (same K) image.
+ImageRgb8 Undistorted(const ImageRgb8& image, const PinholeCamera& camera) {
+  if (camera.distortion.IsZero()) return image;
+  const cv::Matx33d k(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
+  const Distortion& d = camera.distortion;
+  const cv::Vec<double, 5> coefficients(d.k1, d.k2, d.p1, d.p2, d.k3);
+  ImageRgb8 out(image.width, image.height, 3);
+  const cv::Mat in(image.height, image.width, CV_8UC3, const_cast<uint8_t*>(image.data.data()));
+  cv::Mat dst = Wrap(out);
+  cv::undistort(in, dst, k, coefficients, k);
+  return out;
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+nlohmann::json PoseJson(const Eigen::Isometry3d& pose) {
+  nlohmann::json m = nlohmann::json::array();
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) m.push_back(pose.matrix()(r, c));
+  return m;
+}
+
+}  // namespace
+
+std::string_view ClipClockName(ClipClock clock) {
+  return clock == ClipClock::kCameraTime ? "time" : "frames";
+}
+
+void ArFrameOptions::Check() const { relocaliser.Check(); }
+
+void ArPlayOptions::Check() const {
+  REENACT_CHECK(!out_dir.empty(), "out_dir must be set");
+  REENACT_CHECK(max_frames == -1 || max_frames >= 1, "max_frames must be -1 or >= 1");
+  REENACT_CHECK(contact_sheet_columns >= 1, "contact_sheet_columns must be >= 1");
+  REENACT_CHECK(contact_sheet_thumb_width >= 16, "contact_sheet_thumb_width must be >= 16");
+  frame.Check();
+}
+
+ArCompositor::ArCompositor(const Reenactment& reenactment, Relocaliser relocaliser,
+                           const PinholeCamera& camera, Renderer& renderer,
+                           const ArFrameOptions& options)
+    : reenactment_(reenactment),
+      relocaliser_(std::move(relocaliser)),
+      camera_(camera),
+      render_camera_(camera),
+      renderer_(renderer),
+      options_(options),
+      textures_(renderer, reenactment) {
+  render_camera_.distortion = Distortion{};
+}
+
+Expected<ArCompositor> ArCompositor::Create(const Reenactment& reenactment, proto::ClipMap map,
+                                            const PinholeCamera& camera, Renderer& renderer,
+                                            const ArFrameOptions& options) {
+  options.Check();
+  try {
+    camera.Check();
+  } catch (const CheckError& e) {
+    return MakeError("invalid_argument", std::string("viewer camera: ") + e.what());
+  }
+  if (renderer.width() != camera.width || renderer.height() != camera.height)
+    return MakeError("invalid_argument",
+                     "renderer is " + SizeText(renderer.width(), renderer.height()) +
+                         ", the camera " + SizeText(camera.width, camera.height));
+  if (reenactment.frame_count() < 1)
+    return MakeError("invalid_argument", "the clip has no frames to reenact");
+  const size_t points = map.points.size();
+  if (points < static_cast<size_t>(std::max(4, options.relocaliser.min_map_points)))
+    return MakeError("map_too_small",
+                     "the clip's map has " + std::to_string(points) +
+                         " points, relocalisation needs at least " +
+                         std::to_string(std::max(4, options.relocaliser.min_map_points)) +
+                         ": this clip cannot be placed in AR (was the background textured and "
+                         "in view while recording?); use --camera orbit to watch it");
+  auto relocaliser = Relocaliser::Create(std::move(map), camera, options.relocaliser);
+  if (!relocaliser.ok()) return relocaliser.error();
+  return ArCompositor(reenactment, std::move(relocaliser).value(), camera, renderer, options);
+}
+
+Expected<ArFrame> ArCompositor::Process(const CameraFrame& frame) {
+  const ImageRgb8& image = frame.color;
+  if (image.data.empty() || image.width <= 0 || image.height <= 0)
+    return MakeError("invalid_argument", "camera frame " + std::to_string(frames_) + " is empty");
+  if (image.channels != 3)
+    return MakeError("invalid_argument", "camera frame " + std::to_string(frames_) + " has " +
+                                             std::to_string(image.channels) +
+                                             " channels, RGB has 3");
+  if (image.width != camera_.width || image.height != camera_.height)
+    return MakeError("invalid_argument",
+                     "camera frame " + std::to_string(frames_) + " is " +
+                         SizeText(image.width, image.height) + " but the calibration is for " +
+                         SizeText(camera_.width, camera_.height) +
+                         ": use the calibration of this camera at this resolution");
+  if (!std::isfinite(frame.timestamp_s))
+    return MakeError("invalid_argument",
+                     "camera frame " + std::to_string(frames_) + " has no finite timestamp");
+
+  ArFrame out;
+  out.camera_frame = frames_++;
+  out.timestamp_s = frame.timestamp_s;
+  if (!first_timestamp_s_) first_timestamp_s_ = frame.timestamp_s;
+  const int count = reenactment_.frame_count();
+  if (options_.clock == ClipClock::kFrameIndex) {
+    out.clip_frame = out.camera_frame % count;
+  } else {
+    const double elapsed = std::max(0.0, frame.timestamp_s - *first_timestamp_s_);
+    // The small epsilon keeps a timestamp exactly on a frame boundary on that frame.
+    const double index = std::floor(elapsed * reenactment_.manifest().frame_rate_hz + 1e-6);
+    out.clip_frame = static_cast<int>(std::fmod(index, static_cast<double>(count)));
+  }
+
+  auto reloc = relocaliser_.ProcessFrame(image);
+  if (!reloc.ok()) return reloc.error();
+  out.reloc = std::move(reloc).value();
+
+  ImageRgb8 background = Undistorted(image, camera_);
+  if (out.reloc.viewer_from_world) {
+    ReenactedFrame rf = reenactment_.Build(out.clip_frame, render_camera_,
+                                           *out.reloc.viewer_from_world, std::ref(textures_));
+    rf.draw.background = &background;
+    rf.draw.textured = options_.textured;
+    if (!options_.draw_skeleton) rf.draw.bones.clear();
+    out.texture_frame = rf.texture_frame;
+    const auto t0 = std::chrono::steady_clock::now();
+    out.out = renderer_.Render(rf.draw);
+    out.render_ms =
+        1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  } else {
+    out.out.color = std::move(background);
+    out.out.subject_mask = ImageGray8(camera_.width, camera_.height, 1, 0);
+  }
+  if (options_.draw_status) DrawArStatus(out.reloc, out.out.color);
+  return out;
+}
+
+void DrawArStatus(const RelocFrameResult& reloc, ImageRgb8& image) {
+  REENACT_CHECK(image.channels == 3 && !image.data.empty(), "status needs an RGB image");
+  cv::Mat canvas = Wrap(image);
+  const int band = std::min(28, image.height);
+  const bool lost = reloc.status == RelocStatus::kLost;
+  const cv::Scalar fill = lost ? cv::Scalar(190, 30, 30) : cv::Scalar(20, 120, 40);  // RGB
+  char text[160];
+  if (lost)
+    std::snprintf(text, sizeof text, "LOST - point the camera at the clip's scene");
+  else
+    std::snprintf(text, sizeof text, "%s - %d inliers",
+                  std::string(RelocStatusName(reloc.status)).c_str(), reloc.inliers);
+  const int width = lost ? image.width : std::min(image.width, 260);
+  cv::rectangle(canvas, cv::Rect(0, 0, width, band), fill, cv::FILLED);
+  const double scale = std::clamp(image.width / 1000.0, 0.3, 0.6);
+  cv::putText(canvas, text, cv::Point(6, std::max(1, band - 9)), cv::FONT_HERSHEY_SIMPLEX, scale,
+              cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+}
+
+Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::ClipMap map,
+                                       CameraSource& camera, const std::string& clip_id,
+                                       const ArPlayOptions& options) {
+  options.Check();
+  const auto start = std::chrono::steady_clock::now();
+  const PinholeCamera& intrinsics = camera.camera();
+  auto renderer = Renderer::CreateHeadless(intrinsics.width, intrinsics.height);
+  if (!renderer.ok()) return renderer.error();
+  auto compositor =
+      ArCompositor::Create(reenactment, std::move(map), intrinsics, *renderer, options.frame);
+  if (!compositor.ok()) return compositor.error();
+  std::error_code ec;
+  std::filesystem::create_directories(options.out_dir / "frames", ec);
+  if (ec)
+    return MakeError(
+        "io", "cannot create output folder " + options.out_dir.string() + ": " + ec.message());
+
+  ArPlaySummary summary;
+  std::vector<ImageRgb8> written;
+  std::vector<double> reloc_ms, render_ms;
+  nlohmann::json frames_json = nlohmann::json::array();
+  while (options.max_frames < 0 || summary.frames < options.max_frames) {
+    auto next = camera.Next();
+    if (!next.ok()) return next.error();
+    if (!next->has_value()) break;
+    auto frame = compositor->Process(**next);
+    if (!frame.ok()) return frame.error();
+    const int i = frame->camera_frame;
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d.png", i);
+    if (Status s = WritePng((options.out_dir / "frames" / name).string(), frame->out.color);
+        !s.ok())
+      return s.error();
+    if (options.write_masks) {
+      char mask[32];
+      std::snprintf(mask, sizeof mask, "mask_%04d.png", i);
+      if (Status s =
+              WritePng((options.out_dir / "frames" / mask).string(), frame->out.subject_mask);
+          !s.ok())
+        return s.error();
+    }
+    const RelocFrameResult& r = frame->reloc;
+    summary.relocalised += r.status == RelocStatus::kRelocalised;
+    summary.tracked += r.status == RelocStatus::kTracked;
+    summary.lost += r.status == RelocStatus::kLost;
+    reloc_ms.push_back(r.ms);
+    if (r.viewer_from_world) render_ms.push_back(frame->render_ms);
+    frames_json.push_back(
+        {{"output", i},
+         {"timestamp_s", frame->timestamp_s},
+         {"clip_frame", frame->clip_frame},
+         {"texture_frame", frame->texture_frame},
+         {"state", std::string(RelocStatusName(r.status))},
+         {"features", r.features},
+         {"matches", r.matches},
+         {"inliers", r.inliers},
+         {"reloc_ms", r.ms},
+         {"reason", r.reason},
+         {"world_from_viewer",
+          r.viewer_from_world ? PoseJson(r.viewer_from_world->inverse()) : nlohmann::json(nullptr)},
+         {"file", std::string("frames/") + name}});
+    written.push_back(std::move(frame->out.color));
+    ++summary.frames;
+  }
+  if (summary.frames == 0)
+    return MakeError("empty", "camera " + camera.description() +
+                                  " delivered no frames: check the path, the sequence's rgb.txt "
+                                  "or that the camera is not in use by another program");
+  summary.reloc_ms_median = Median(reloc_ms);
+  summary.render_ms_median = Median(render_ms);
+
+  const ImageRgb8 sheet =
+      MakeContactSheet(written, options.contact_sheet_columns, options.contact_sheet_thumb_width);
+  if (Status s = WritePng((options.out_dir / "contact_sheet.png").string(), sheet); !s.ok())
+    return s.error();
+  if (options.write_mp4) {
+    const std::filesystem::path mp4 = options.out_dir / "reenactment.mp4";
+    auto writer = Mp4Writer::Open(mp4.string(), intrinsics.width, intrinsics.height,
+                                  reenactment.manifest().frame_rate_hz);
+    if (writer.ok()) {
+      for (const ImageRgb8& f : written)
+        if (Status s = writer->Write(f); !s.ok()) return s.error();
+      writer->Close();
+      summary.mp4_path = mp4.string();
+    } else {
+      summary.mp4_warning = writer.error().message;
+    }
+  }
+  const PinholeCamera& c = intrinsics;
+  const nlohmann::json render = {
+      {"clip_id", clip_id},
+      {"presentation", "ar"},
+      {"camera_source", camera.description()},
+      {"clip_clock", std::string(ClipClockName(options.frame.clock))},
+      {"camera",
+       {{"width", c.width},
+        {"height", c.height},
+        {"fx", c.fx},
+        {"fy", c.fy},
+        {"cx", c.cx},
+        {"cy", c.cy},
+        {"distortion",
+         {c.distortion.k1, c.distortion.k2, c.distortion.p1, c.distortion.p2, c.distortion.k3}}}},
+      {"relocalised", summary.relocalised},
+      {"tracked", summary.tracked},
+      {"lost", summary.lost},
+      {"reloc_ms_median", summary.reloc_ms_median},
+      {"render_ms_median", summary.render_ms_median},
+      {"frames", frames_json}};
+  std::ofstream json(options.out_dir / "render.json");
+  json << render.dump(2) << "\n";
+  if (!json) return MakeError("io", "cannot write " + (options.out_dir / "render.json").string());
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace reenact::viewer
