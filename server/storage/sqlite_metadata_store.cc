@@ -380,8 +380,11 @@ Expected<std::vector<NearbyHit>> SqliteMetadataStore::Nearby(const NearbyQuery& 
     ~ResetOnExit() { stmt->Reset(); }
   } reset_on_exit{stmt};
   std::vector<NearbyHit> hits;
+  // Boxes overlap only when a query spans the antimeridian or a pole: then a clip can come
+  // back twice, and only then are ids remembered.
+  const std::vector<LatLonBox> boxes = BoundingBoxes(query.lat_deg, query.lon_deg, query.radius_m);
   std::set<std::string> seen;
-  for (const LatLonBox& box : BoundingBoxes(query.lat_deg, query.lon_deg, query.radius_m)) {
+  for (const LatLonBox& box : boxes) {
     stmt->Reset();
     stmt->Bind(1, box.min_lat_deg)
         .Bind(2, box.max_lat_deg)
@@ -391,10 +394,12 @@ Expected<std::vector<NearbyHit>> SqliteMetadataStore::Nearby(const NearbyQuery& 
       auto row = stmt->Step();
       if (!row) return row.error();
       if (!*row) break;
-      ClipRecord clip = ReadClip(*stmt);
-      if (!seen.insert(clip.id).second) continue;
-      const double d = HaversineDistanceM(query.lat_deg, query.lon_deg, clip.lat_deg, clip.lon_deg);
+      // The distance first (columns 5, 6: lat, lon): most of a box's corners lie outside.
+      const double d = HaversineDistanceM(query.lat_deg, query.lon_deg, stmt->ColumnDouble(5),
+                                          stmt->ColumnDouble(6));
       if (d > query.radius_m) continue;
+      ClipRecord clip = ReadClip(*stmt);
+      if (boxes.size() > 1 && !seen.insert(clip.id).second) continue;
       if (query.after &&
           std::tie(d, clip.id) <= std::tie(query.after->distance_m, query.after->id)) {
         continue;
