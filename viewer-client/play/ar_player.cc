@@ -13,6 +13,7 @@
 #include "viewer-client/output/contact_sheet.h"
 #include "viewer-client/output/mp4_writer.h"
 #include "viewer-client/output/png_writer.h"
+#include "viewer-client/output/render_json.h"
 
 namespace reenact::viewer {
 namespace {
@@ -40,13 +41,6 @@ double Median(std::vector<double> v) {
   if (v.empty()) return 0;
   std::sort(v.begin(), v.end());
   return v[v.size() / 2];
-}
-
-nlohmann::json PoseJson(const Eigen::Isometry3d& pose) {
-  nlohmann::json m = nlohmann::json::array();
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) m.push_back(pose.matrix()(r, c));
-  return m;
 }
 
 }  // namespace
@@ -269,21 +263,12 @@ Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::Cl
       summary.mp4_warning = writer.error().message;
     }
   }
-  const PinholeCamera& c = intrinsics;
   const nlohmann::json render = {
       {"clip_id", clip_id},
       {"presentation", "ar"},
       {"camera_source", camera.description()},
       {"clip_clock", std::string(ClipClockName(options.frame.clock))},
-      {"camera",
-       {{"width", c.width},
-        {"height", c.height},
-        {"fx", c.fx},
-        {"fy", c.fy},
-        {"cx", c.cx},
-        {"cy", c.cy},
-        {"distortion",
-         {c.distortion.k1, c.distortion.k2, c.distortion.p1, c.distortion.p2, c.distortion.k3}}}},
+      {"camera", CameraJson(intrinsics)},
       {"relocalised", summary.relocalised},
       {"tracked", summary.tracked},
       {"lost", summary.lost},

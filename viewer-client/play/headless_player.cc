@@ -12,21 +12,11 @@
 #include "viewer-client/output/mp4_writer.h"
 #include "viewer-client/output/png_writer.h"
 #include "viewer-client/play/texture_cache.h"
+#include "viewer-client/output/render_json.h"
 #include "viewer-client/play/viewer_camera.h"
 #include "viewer-client/render/renderer.h"
 
 namespace reenact::viewer {
-namespace {
-
-nlohmann::json PoseJson(const Eigen::Isometry3d& pose) {
-  nlohmann::json m = nlohmann::json::array();
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) m.push_back(pose.matrix()(r, c));
-  return m;
-}
-
-}  // namespace
-
 void HeadlessPlayOptions::Check() const {
   REENACT_CHECK(!out_dir.empty(), "out_dir must be set");
   REENACT_CHECK(max_frames == -1 || max_frames >= 1, "max_frames must be -1 or >= 1");
@@ -124,13 +114,7 @@ Expected<PlaySummary> PlayHeadless(const Reenactment& reenactment, const std::st
   const nlohmann::json render = {{"clip_id", clip_id},
                                  {"presentation", "orbit"},
                                  {"orbit_angle_deg", options.orbit.angle_deg},
-                                 {"camera",
-                                  {{"width", camera.width},
-                                   {"height", camera.height},
-                                   {"fx", camera.fx},
-                                   {"fy", camera.fy},
-                                   {"cx", camera.cx},
-                                   {"cy", camera.cy}}},
+                                 {"camera", CameraJson(camera)},
                                  {"world_from_viewer", PoseJson(view->world_from_viewer)},
                                  {"render_fps", summary.render_fps},
                                  {"frames", frames_json}};
