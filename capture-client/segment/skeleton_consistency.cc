@@ -6,19 +6,12 @@
 #include <numbers>
 
 #include "common/error/check.h"
+#include "common/estimate/median.h"
 
 namespace reenact::capture {
 namespace {
 
 bool Usable(const Skeleton& s, Joint j) { return s.Has(j) && s[j].allFinite(); }
-
-double Median(std::vector<double> v) {
-  const size_t n = v.size();
-  std::nth_element(v.begin(), v.begin() + n / 2, v.end());
-  const double upper = v[n / 2];
-  if (n % 2) return upper;
-  return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + n / 2));
-}
 
 std::string Format(const char* format, double a, double b, double c) {
   char buffer[128];

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "common/error/check.h"
+#include "common/estimate/median.h"
 
 namespace reenact {
 namespace {
@@ -31,12 +32,6 @@ bool ShortBone(const Skeleton& s, BodyPart part, const PinholeCamera& camera) {
   if (!((s[b] - s[a]).norm() >= kMinBoneLength)) return true;
   const auto pa = camera.Project(s[a]), pb = camera.Project(s[b]);
   return pa && pb && (*pb - *pa).norm() < 2.0;
-}
-
-double MedianOf(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t mid = v.size() / 2;
-  return v.size() % 2 ? v[mid] : 0.5 * (v[mid - 1] + v[mid]);
 }
 
 }  // namespace
@@ -140,7 +135,7 @@ ModelBuildResult BuildCylinderModel(std::span<const Skeleton> skeletons,
     result.fit_count[p] = static_cast<int>(kept[p].size());
     if (result.fitted_frames.empty()) continue;
     if (result.fit_count[p] >= options.min_part_fits) {
-      result.radius_ratio[p] = MedianOf(kept[p]);
+      result.radius_ratio[p] = Median(kept[p]);
       result.fitted[p] = true;
       result.outcome[p] = PartFitOutcome::kFitted;
     } else if (result.fit_count[p] > 0) {

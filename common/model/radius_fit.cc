@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/error/check.h"
+#include "common/estimate/median.h"
 
 namespace reenact {
 namespace {
@@ -18,13 +19,6 @@ struct ProjectedAxis {
   double length_px = 0;
   double length_m = 0;
 };
-
-double Median(std::vector<double> v) {
-  REENACT_CHECK(!v.empty(), "median of an empty set");
-  const size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + mid, v.end());
-  return v[mid];
-}
 
 }  // namespace
 
@@ -111,9 +105,9 @@ RadiusFitResult FitRadiusRatios(const Skeleton& skeleton, const PinholeCamera& c
     const double f = std::hypot(ax.normal.x() * camera.fx, ax.normal.y() * camera.fy);
     // The silhouette's half width is r f / (z + r) for a cylinder whose nearest surface lies
     // at depth z, so r = w z / (2 f - w).
-    const double w = Median(widths);
+    const double w = UpperMedian(widths);
     if (!(2 * f - w > 0)) continue;
-    const double radius = w * Median(part_depths[p]) / (2 * f - w);
+    const double radius = w * UpperMedian(part_depths[p]) / (2 * f - w);
     result.radius_ratio[p] = radius / ax.length_m;
     result.fitted[p] = true;
   }

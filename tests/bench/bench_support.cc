@@ -5,12 +5,12 @@
 
 #include <Eigen/Geometry>
 
+#include "common/estimate/median.h"
+
 namespace reenact::bench {
 
 double Median(std::vector<double> samples) {
-  if (samples.empty()) return 0;
-  std::nth_element(samples.begin(), samples.begin() + samples.size() / 2, samples.end());
-  return samples[samples.size() / 2];
+  return samples.empty() ? 0 : UpperMedian(std::move(samples));
 }
 
 std::vector<double> TimeRepeated(int repeats, double per, const std::function<void()>& body) {

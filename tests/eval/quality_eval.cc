@@ -13,6 +13,7 @@
 #include "capture-client/record/clip_recorder.h"
 #include "capture-client/source/synthetic_source.h"
 #include "common/error/check.h"
+#include "common/estimate/median.h"
 #include "proto/clip/clip_directory.h"
 #include "tests/eval/side_by_side.h"
 #include "viewer-client/output/png_writer.h"
@@ -20,12 +21,6 @@
 
 namespace reenact::eval {
 namespace {
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
 
 // The scene and the frame source of the options' scenario: the one place both are made, so
 // that a further scene choice (a body, a seed) is passed on to both.
@@ -266,7 +261,7 @@ Expected<QualityRun> RunQuality(const QualityOptions& options) {
       for (double* mean : {&row.ssim, &row.iou, &row.colour_mae, &row.wrong_part_rate,
                            &row.untextured_rate, &row.reference_iou})
         *mean /= row.n;
-      row.ms_per_frame = Median(ms);
+      row.ms_per_frame = ms.empty() ? 0 : UpperMedian(ms);
       run.rows.push_back(row);
     }
     if (options.image_dir.empty()) continue;

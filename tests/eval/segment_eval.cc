@@ -10,6 +10,7 @@
 #include "capture-client/segment/mask_overlap.h"
 #include "capture-client/segment/person_segmenter.h"
 #include "capture-client/synthetic/synthetic_scene.h"
+#include "common/estimate/median.h"
 #include "tests/eval/quality_cli.h"
 
 namespace reenact::eval {
@@ -20,13 +21,6 @@ double ThreadCpuMs() {
   timespec t{};
   ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 Expected<SegmentEvalRow> RunScenario(const std::string& name, const SegmentEvalOptions& options) {
@@ -71,8 +65,8 @@ Expected<SegmentEvalRow> RunScenario(const std::string& name, const SegmentEvalO
   std::sort(sorted.begin(), sorted.end());
   const size_t rank = static_cast<size_t>(std::ceil(0.1 * row.frames));
   row.iou_p10 = sorted[std::max<size_t>(rank, 1) - 1];
-  row.ms_per_frame = Median(ms);
-  row.cpu_ms_per_frame = Median(cpu_ms);
+  row.ms_per_frame = ms.empty() ? 0 : Median(ms);
+  row.cpu_ms_per_frame = cpu_ms.empty() ? 0 : Median(cpu_ms);
   return row;
 }
 

@@ -14,6 +14,7 @@
 #include "capture-client/slam/rgbd_slam.h"
 #include "capture-client/source/tum_source.h"
 #include "common/align/trajectory_error.h"
+#include "common/estimate/median.h"
 #include "common/geometry/rotation.h"
 #include "proto/clip/map_codec.h"
 #include "tests/eval/quality_cli.h"
@@ -54,12 +55,6 @@ Expected<std::unique_ptr<TumSource>> OpenSequence(const SlamEvalOptions& options
     o.camera = *camera;
   }
   return TumSource::Open(options.tum_dir, o);
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return kNaN;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
 }
 
 double Percentile90(std::vector<double> v) {
@@ -108,7 +103,7 @@ void Score(const Trajectory& t, const std::vector<std::optional<Eigen::Isometry3
   }
   r.rpe_m = rpe_n > 0 ? std::sqrt(rpe_t2 / rpe_n) : kNaN;
   r.rpe_deg = rpe_n > 0 ? std::sqrt(rpe_r2 / rpe_n) : kNaN;
-  r.ms_per_frame = Median(t.ms);
+  r.ms_per_frame = t.ms.empty() ? kNaN : UpperMedian(t.ms);
   r.ms_p90 = Percentile90(t.ms);
 }
 

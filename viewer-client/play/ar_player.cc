@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/error/check.h"
+#include "common/estimate/median.h"
 #include "viewer-client/output/contact_sheet.h"
 #include "viewer-client/output/mp4_writer.h"
 #include "viewer-client/output/png_writer.h"
@@ -35,12 +36,6 @@ ImageRgb8 Undistorted(const ImageRgb8& image, const PinholeCamera& camera) {
   cv::Mat dst = Wrap(out);
   cv::undistort(in, dst, k, coefficients, k);
   return out;
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
 }
 
 }  // namespace
@@ -243,8 +238,8 @@ Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::Cl
     return MakeError("empty", "camera " + camera.description() +
                                   " delivered no frames: check the path, the sequence's rgb.txt "
                                   "or that the camera is not in use by another program");
-  summary.reloc_ms_median = Median(reloc_ms);
-  summary.render_ms_median = Median(render_ms);
+  summary.reloc_ms_median = reloc_ms.empty() ? 0 : UpperMedian(reloc_ms);
+  summary.render_ms_median = render_ms.empty() ? 0 : UpperMedian(render_ms);
 
   const ImageRgb8 sheet =
       MakeContactSheet(written, options.contact_sheet_columns, options.contact_sheet_thumb_width);

@@ -1,0 +1,17 @@
+#pragma once
+// Medians of a sample (taken by value: reordered in place, O(n) by selection).
+
+#include <vector>
+
+namespace reenact {
+
+// The middle value; for an even count the mean of the two middle values.
+// Precondition (CHECK): v is not empty.
+double Median(std::vector<double> v);
+
+// The value at index n / 2 in ascending order: the middle value, or for an even count the
+// larger of the two middle values (always one of the samples).
+// Precondition (CHECK): v is not empty.
+double UpperMedian(std::vector<double> v);
+
+}  // namespace reenact
