@@ -37,7 +37,8 @@ class HttpServer::Impl : public std::enable_shared_from_this<HttpServer::Impl> {
       : context(context_in),
         options(std::move(options_in)),
         limiter(options.rate_limit),
-        control(asio::make_strand(ioc)),
+        loops(MakeLoops(options.ResolvedThreads())),
+        control(asio::make_strand(*loops.front())),
         acceptor(control),
         signals(control),
         drain_timer(control) {}
@@ -55,11 +56,19 @@ class HttpServer::Impl : public std::enable_shared_from_this<HttpServer::Impl> {
   std::shared_ptr<std::atomic<int>> served = std::make_shared<std::atomic<int>>(0);
 
  private:
+  static std::vector<std::unique_ptr<asio::io_context>> MakeLoops(int count);
   void DoAccept();
   void OnAccept(beast::error_code ec, tcp::socket socket);
   void PollDrain();
+  void StopLoops();
 
-  asio::io_context ioc;
+  // One event loop per thread (concurrency hint 1): a connection lives on one loop, so its
+  // handlers need no strand and no thread hands a ready socket to another, which halved the
+  // futex and scheduler work per request on 2 cores (docs/server.md, Load).
+  std::vector<std::unique_ptr<asio::io_context>> loops;
+  // Keeps loops 1..n-1 running while they have no connection; released once drained.
+  std::vector<asio::executor_work_guard<asio::io_context::executor_type>> idle_guards;
+  size_t next_loop = 0;                                   // round robin, on control
   asio::strand<asio::io_context::executor_type> control;  // acceptor, signals, timer, list
   tcp::acceptor acceptor;
   asio::signal_set signals;
@@ -283,7 +292,7 @@ class Session : public std::enable_shared_from_this<Session> {
 
 Expected<uint16_t> HttpServer::Impl::Listen() {
   beast::error_code ec;
-  tcp::resolver resolver(ioc);
+  tcp::resolver resolver(*loops.front());
   auto results = resolver.resolve(options.host, std::to_string(options.port),
                                   tcp::resolver::passive | tcp::resolver::numeric_service, ec);
   const std::string where = options.host + ":" + std::to_string(options.port);
@@ -317,11 +326,21 @@ void HttpServer::Impl::Run(bool stop_on_signals) {
     }
     self->DoAccept();
   });
+  for (size_t i = 1; i < loops.size(); ++i) idle_guards.push_back(asio::make_work_guard(*loops[i]));
   std::vector<std::thread> threads;
-  const int thread_count = options.ResolvedThreads();
-  for (int i = 1; i < thread_count; ++i) threads.emplace_back([this] { ioc.run(); });
-  ioc.run();
+  for (size_t i = 1; i < loops.size(); ++i) threads.emplace_back([this, i] { loops[i]->run(); });
+  loops.front()->run();
   for (auto& thread : threads) thread.join();
+}
+
+std::vector<std::unique_ptr<asio::io_context>> HttpServer::Impl::MakeLoops(int count) {
+  std::vector<std::unique_ptr<asio::io_context>> loops;
+  for (int i = 0; i < count; ++i) loops.push_back(std::make_unique<asio::io_context>(1));
+  return loops;
+}
+
+void HttpServer::Impl::StopLoops() {
+  for (auto& loop : loops) loop->stop();
 }
 
 void HttpServer::Impl::Stop() {
@@ -340,9 +359,12 @@ void HttpServer::Impl::Stop() {
 }
 
 void HttpServer::Impl::PollDrain() {
-  if (*live == 0) return;  // nothing left: the loop runs out of work and Run() returns
+  if (*live == 0) {  // nothing left: the loops run out of work and Run() returns
+    idle_guards.clear();
+    return;
+  }
   if (std::chrono::steady_clock::now() >= drain_deadline) {
-    ioc.stop();
+    StopLoops();
     return;
   }
   drain_timer.expires_after(std::chrono::milliseconds(20));
@@ -350,7 +372,9 @@ void HttpServer::Impl::PollDrain() {
 }
 
 void HttpServer::Impl::DoAccept() {
-  acceptor.async_accept(asio::make_strand(ioc),
+  asio::io_context& loop = *loops[next_loop];
+  next_loop = (next_loop + 1) % loops.size();
+  acceptor.async_accept(loop.get_executor(),
                         beast::bind_front_handler(&Impl::OnAccept, shared_from_this()));
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // The asynchronous HTTP/1.1 server (Boost.Beast, after its async server example): a listener
-// and one session per connection, each on its own strand, running Handle() (routes.h) for
-// every request. Bodies are limited per route (BodyLimit) before they are read; every read
+// and one session per connection, running Handle() (routes.h) for every request. Each thread
+// runs its own event loop; connections are dealt to the loops in turn and stay on theirs. Bodies are limited per route (BodyLimit) before they are read; every read
 // and write has a deadline. Stop() is graceful: no new connections, idle connections close,
 // requests in flight finish and are answered, then Run() returns.
 // Beyond max_connections, a new connection is answered 503 "unavailable" and closed. Requests
@@ -25,8 +25,8 @@ struct ServerOptions {
   std::string host = "127.0.0.1";
   // TCP port; 0 = let the system pick a free one (Listen() returns it). Default 8080.
   uint16_t port = 8080;
-  // Threads running the I/O loop and the handlers; >= 0, 0 = one per hardware thread (at
-  // least 2, since handlers block on the database). Default 0.
+  // Threads, each running an event loop and its connections' handlers; >= 0, 0 = one per
+  // hardware thread (at least 2, since handlers block on the database). Default 0.
   int threads = 0;
   // Connections served at once; >= 1. More are answered 503 and closed. Default 1024.
   int max_connections = 1024;

@@ -141,7 +141,7 @@ Response ListNearby(const Request& /*request*/, ServiceContext& context, const R
   for (const NearbyHit& hit : *hits) {
     clips.push_back(proto::ClipSummaryToJson(Summary(hit.clip, hit.distance_m)));
   }
-  nlohmann::json body = {{"clips", clips}, {"next_cursor", nullptr}};
+  nlohmann::json body = {{"clips", std::move(clips)}, {"next_cursor", nullptr}};
   if (more) {
     body["next_cursor"] = EncodeCursor({hits->back().distance_m, hits->back().clip.id});
   }

@@ -5,6 +5,8 @@
 //      keep-alive client threads for `seconds`: qps, p50_ms, p99_ms.
 //   3. Uploads: `clients` threads PUT 1 MiB frames for `seconds` (bounded in bytes): mb_per_s.
 // N is 10^5 and 10^6 (only 10^5 with --quick; --clips N picks one). Loopback only.
+// With --db DIR the seeded databases stay in DIR as bench-N.db, and a later run with the same
+// N reuses one that holds N published clips (the uploads add only drafts).
 #include "tests/bench/server_bench.h"
 
 #include <unistd.h>
@@ -49,7 +51,8 @@ struct Settings {
   std::vector<long long> clip_counts;
   int clients = 4;
   double seconds = 3;
-  std::string db_dir;  // where the databases go (a temp dir unless --db DIR)
+  std::string db_dir;   // where the databases go (a temp dir unless --db DIR)
+  bool keep_db = false;  // --db DIR: seeded databases stay there and later runs reuse them
 };
 
 // Seeds `count` published clips, owned by one user, in one transaction.
@@ -280,21 +283,45 @@ Expected<LoadResult> UploadLoad(uint16_t port, const std::string& url, const std
   r.p50_ms = Percentile(latencies_ms, 0.50);
   r.p99_ms = Percentile(latencies_ms, 0.99);
   r.errors = errors;
+  // The drafts go again, so that a kept database does not grow from run to run.
+  for (const std::string& id : ids) {
+    if (Status s = api.DeleteClip(id); !s) return s.error();
+  }
   return r;
 }
 
+// The number of published clips in a database an earlier run seeded, or -1 when there is no
+// usable one (absent, another schema, unreadable).
+long long SeededClips(const std::string& db_path) {
+  if (!std::filesystem::exists(db_path)) return -1;
+  auto db = server::sqlite::Database::Open(db_path);
+  if (!db) return -1;
+  auto count = db->Prepare("SELECT COUNT(*) FROM clips WHERE state = 'published'");
+  if (!count) return -1;
+  auto row = count->Step();
+  if (!row || !*row) return -1;
+  return count->ColumnInt(0);
+}
+
 Status RunOne(long long count, const Settings& settings, proto::Report& report) {
+  // A kept database (--db DIR) is named by its clip count alone, so the next run finds it.
   const std::string db_path =
-      settings.db_dir + "/bench-" + std::to_string(count) + "-" + std::to_string(getpid()) + ".db";
-  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(db_path + suffix);
-  const auto seed_start = Clock::now();
-  if (Status s = Seed(db_path, count); !s) return s;
-  const double seed_s = std::chrono::duration<double>(Clock::now() - seed_start).count();
-  std::cerr << "reenact-bench: seeded " << count << " clips in " << seed_s << " s" << std::endl;
+      settings.db_dir + "/bench-" + std::to_string(count) +
+      (settings.keep_db ? std::string() : "-" + std::to_string(getpid())) + ".db";
+  if (settings.keep_db && SeededClips(db_path) == count) {
+    std::cerr << "reenact-bench: reusing " << db_path << std::endl;
+  } else {
+    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(db_path + suffix);
+    const auto seed_start = Clock::now();
+    if (Status s = Seed(db_path, count); !s) return s;
+    const double seed_s = std::chrono::duration<double>(Clock::now() - seed_start).count();
+    std::cerr << "reenact-bench: seeded " << count << " clips in " << seed_s << " s" << std::endl;
+  }
 
   auto storage = server::OpenSqliteStorage(db_path);
   if (!storage) return storage.error();
-  auto token = server::AddUserWithToken(*storage->metadata, "uploader");
+  // A kept database already has the users of earlier runs.
+  auto token = server::AddUserWithToken(*storage->metadata, "uploader-" + std::to_string(getpid()));
   if (!token) return token.error();
   const double us = StoreMicrosPerQuery(*storage->metadata, 1000);
   report.rows.push_back(proto::ReportRow()
@@ -339,7 +366,9 @@ Status RunOne(long long count, const Settings& settings, proto::Report& report) 
                             .Add("errors", upload->errors));
   storage->metadata.reset();
   storage->blobs.reset();
-  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(db_path + suffix);
+  if (!settings.keep_db) {
+    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(db_path + suffix);
+  }
   return {};
 }
 
@@ -377,6 +406,7 @@ int RunServerBench(const CommandLine& cl) {
       return fail(MakeError("usage", "--db wants an existing directory for the bench databases"));
     }
     settings.db_dir = *dir;
+    settings.keep_db = true;
   } else {
     std::string pattern =
         (std::filesystem::temp_directory_path() / "reenact-bench-XXXXXX").string();
