@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstring>
-
 #include <opencv2/core.hpp>
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
@@ -17,6 +16,10 @@ int64_t VoxelKey(int x, int y, int z) {
          ((static_cast<int64_t>(z) & 0x1FFFFF) << 42);
 }
 
+Eigen::Vector3i Cell(const Eigen::Vector3d& p, double size) {
+  return (p / size).array().floor().cast<int>();
+}
+
 int Hamming(const std::array<uint8_t, 32>& a, const uint8_t* b) {
   int d = 0;
   for (int i = 0; i < 32; ++i) d += __builtin_popcount(static_cast<unsigned>(a[i] ^ b[i]));
@@ -29,6 +32,7 @@ vision::OrbFeatureOptions DefaultMapFeatures() {
   vision::OrbFeatureOptions o;
   o.max_depth_m = 8.0;
   o.subpixel = true;
+  o.depth_fit_radius_px = 4;
   return o;
 }
 
@@ -52,41 +56,54 @@ void BackgroundMapBuilder::AddKeyframe(const ImageRgb8& color, const ImageDepthM
   const cv::Mat rgb(color.height, color.width, CV_8UC3, const_cast<uint8_t*>(color.data.data()));
   cv::Mat gray;
   cv::cvtColor(rgb, gray, cv::COLOR_RGB2GRAY);
-  const vision::FrameFeatures features =
-      vision::ExtractOrbFeatures(gray, depth, depth_scale_m, &person_mask, camera, options_.features);
+  const vision::FrameFeatures features = vision::ExtractOrbFeatures(
+      gray, depth, depth_scale_m, &person_mask, camera, options_.features);
 
-  const double cell = options_.merge_radius_m;
-  for (size_t i = 0; i < features.size() && map_.points.size() < options_.max_points; ++i) {
+  for (size_t i = 0; i < features.size(); ++i) {
     if (features.observations[i].depth_m <= 0) continue;
-    const Eigen::Vector3d p = world_from_sensor * features.points_in_camera[i];
-    const uint8_t* desc = features.Descriptor(i);
+    AddPoint(world_from_sensor * features.points_in_camera[i], features.Descriptor(i));
+  }
+}
 
-    const int vx = static_cast<int>(std::floor(p.x() / cell));
-    const int vy = static_cast<int>(std::floor(p.y() / cell));
-    const int vz = static_cast<int>(std::floor(p.z() / cell));
-    bool merged = false;
-    for (int dx = -1; dx <= 1 && !merged; ++dx)
-      for (int dy = -1; dy <= 1 && !merged; ++dy)
-        for (int dz = -1; dz <= 1 && !merged; ++dz) {
-          auto [lo, hi] = grid_.equal_range(VoxelKey(vx + dx, vy + dy, vz + dz));
-          for (auto it = lo; it != hi; ++it) {
-            proto::MapPoint& mp = map_.points[it->second];
-            if ((mp.position_in_world - p).norm() <= cell &&
-                Hamming(mp.descriptor, desc) <= options_.merge_max_hamming) {
-              ++mp.observations;
-              merged = true;
-              break;
-            }
+BackgroundMapBuilder::BackgroundMapBuilder(proto::ClipMap seed, BackgroundMapOptions options)
+    : BackgroundMapBuilder(options) {
+  map_ = std::move(seed);
+  for (size_t i = 0; i < map_.points.size(); ++i) {
+    grid_.emplace(CellKey(map_.points[i].position_in_world), i);
+  }
+}
+
+int64_t BackgroundMapBuilder::CellKey(const Eigen::Vector3d& p) const {
+  return CellKey(Cell(p, options_.merge_radius_m));
+}
+
+int64_t BackgroundMapBuilder::CellKey(const Eigen::Vector3i& cell) const {
+  return VoxelKey(cell.x(), cell.y(), cell.z());
+}
+
+void BackgroundMapBuilder::AddPoint(const Eigen::Vector3d& p, const uint8_t* desc) {
+  const Eigen::Vector3i cell = Cell(p, options_.merge_radius_m);
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz) {
+        auto [lo, hi] =
+            grid_.equal_range(CellKey(Eigen::Vector3i(cell + Eigen::Vector3i(dx, dy, dz))));
+        for (auto it = lo; it != hi; ++it) {
+          proto::MapPoint& mp = map_.points[it->second];
+          if ((mp.position_in_world - p).norm() <= options_.merge_radius_m &&
+              Hamming(mp.descriptor, desc) <= options_.merge_max_hamming) {
+            ++mp.observations;
+            return;
           }
         }
-    if (merged) continue;
-    proto::MapPoint mp;
-    mp.position_in_world = p;
-    std::memcpy(mp.descriptor.data(), desc, 32);
-    mp.observations = 1;
-    grid_.emplace(VoxelKey(vx, vy, vz), map_.points.size());
-    map_.points.push_back(mp);
-  }
+      }
+  if (map_.points.size() >= options_.max_points) return;
+  proto::MapPoint mp;
+  mp.position_in_world = p;
+  std::memcpy(mp.descriptor.data(), desc, 32);
+  mp.observations = 1;
+  grid_.emplace(CellKey(cell), map_.points.size());
+  map_.points.push_back(mp);
 }
 
 proto::ClipMap BackgroundMapBuilder::Finish() && { return std::move(map_); }

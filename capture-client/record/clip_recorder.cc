@@ -134,6 +134,7 @@ void RecordOptions::Check() const {
   REENACT_CHECK(keyframe_interval >= 1, "keyframe_interval must be >= 1");
   codec.Check();
   map.Check();
+  virtual_views.Check();
   model.Check();
   segment.Check();
   slam.Check();
@@ -150,6 +151,7 @@ Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::p
 
   StoredFrames stored;
   BackgroundMapBuilder map_builder(options.map);
+  std::vector<VirtualViewKeyframe> virtual_keyframes;
   PersonSegmenter segmenter(info.depth_camera, info.depth_scale_m, options.segment);
   std::optional<slam::RgbdSlam> slam;
   std::optional<Eigen::Vector3d> world_up = info.world_up;
@@ -248,6 +250,11 @@ Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::p
     if (!slam && index % options.keyframe_interval == 0)
       map_builder.AddKeyframe(f.color, f.depth, info.depth_scale_m, mask, info.color_camera,
                               *world_from_sensor);
+    const auto pivot = SubjectPivot(**skeleton, *world_from_sensor);
+    if (pivot && (stored.encoded.size() - 1) % options.virtual_views.keyframe_interval == 0 &&
+        static_cast<int>(virtual_keyframes.size()) < options.virtual_views.max_keyframes) {
+      virtual_keyframes.push_back({f.color, f.depth, mask, *world_from_sensor, *pivot});
+    }
     times.map_ms.push_back(slam ? 0.0 : MsSince(map_start));
   }
   if (summary.source_frames == 0)
@@ -303,7 +310,10 @@ Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::p
   times.model_ms = MsSince(model_start);
 
   const auto write_start = Clock::now();
-  proto::ClipMap map = slam ? slam->ExportClipMap() : std::move(map_builder).Finish();
+  proto::ClipMap map = AddVirtualViews(
+      slam ? slam->ExportClipMap() : std::move(map_builder).Finish(), virtual_keyframes,
+      info.depth_scale_m, info.color_camera, manifest.world_up, options.virtual_views,
+      options.map, &summary.virtual_view_points);
   auto map_bytes = proto::EncodeMap(map, proto::MapCodecOptions{});
   if (!map_bytes.ok()) return map_bytes.error();
   manifest.map.point_count = static_cast<int64_t>(map.points.size());

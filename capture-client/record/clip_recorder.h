@@ -18,7 +18,9 @@
 // Afterwards: skeletons that fail the consistency check (skeleton_consistency.h) are kept out
 // of the model and listed in the manifest's flagged_skeleton_frames, so viewers never texture
 // from them. The map is SLAM's export when SLAM gave the poses, else built from keyframes
-// with the source's poses (map/background_map_builder.h).
+// with the source's poses (map/background_map_builder.h); then every
+// virtual_views.keyframe_interval-th stored frame adds the features of views turned around
+// the subject (map/virtual_views.h), so viewers who walk around it still find the map.
 
 #include <filesystem>
 #include <functional>
@@ -27,6 +29,7 @@
 #include <vector>
 
 #include "capture-client/map/background_map_builder.h"
+#include "capture-client/map/virtual_views.h"
 #include "capture-client/segment/segment_options.h"
 #include "capture-client/slam/slam_options.h"
 #include "capture-client/source/frame_source.h"
@@ -54,6 +57,9 @@ struct RecordOptions {
   std::string author;
   proto::FrameCodecOptions codec;
   BackgroundMapOptions map;      // with source poses
+  // Map points from virtual views around the subject (map/virtual_views.h), added to the
+  // map however it was built; yaw_deg empty = none.
+  VirtualViewOptions virtual_views;
   PersonSegmentOptions segment;  // for frames whose source gives no person mask
   PoseSource poses = PoseSource::kAuto;
   // SLAM, when it gives the poses. Its readout_ratio is replaced by the source's
@@ -89,6 +95,7 @@ struct RecordSummary {
   uint64_t frame_bytes = 0;         // all encoded frames together
   uint64_t map_bytes = 0;
   size_t map_points = 0;
+  size_t virtual_view_points = 0;  // of map_points, from virtual views
   bool slam_poses = false;  // the poses came from SLAM
   int slam_keyframes = 0;
   int slam_fallback_frames = 0;  // tracked by the cv::rgbd odometry fallback

@@ -5,12 +5,50 @@
 #include <cmath>
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
+#include <unordered_map>
 
 #include "common/error/check.h"
 #include "common/estimate/ransac.h"
 #include "vision/pose/pnp_estimator.h"
 
 namespace reenact::viewer {
+namespace {
+
+// Map points closer than this are one place seen in several views.
+constexpr double kSamePointRadiusM = 0.02;
+// Nearest descriptors looked at for a second best of another place.
+constexpr int kNearestDescriptors = 6;
+
+// Per point, the index of the first point within radius_m of it (itself when none is).
+std::vector<int> GroupNearbyPoints(const proto::ClipMap& map, double radius_m) {
+  std::unordered_multimap<int64_t, int> cells;
+  const auto key = [](const Eigen::Vector3i& c) {
+    return (static_cast<int64_t>(c.x()) & 0x1FFFFF) |
+           ((static_cast<int64_t>(c.y()) & 0x1FFFFF) << 21) |
+           ((static_cast<int64_t>(c.z()) & 0x1FFFFF) << 42);
+  };
+  std::vector<int> group(map.points.size());
+  for (size_t i = 0; i < map.points.size(); ++i) {
+    const Eigen::Vector3d& p = map.points[i].position_in_world;
+    const Eigen::Vector3i cell = (p / radius_m).array().floor().cast<int>();
+    group[i] = static_cast<int>(i);
+    for (int dx = -1; dx <= 1 && group[i] == static_cast<int>(i); ++dx)
+      for (int dy = -1; dy <= 1 && group[i] == static_cast<int>(i); ++dy)
+        for (int dz = -1; dz <= 1 && group[i] == static_cast<int>(i); ++dz) {
+          auto [lo, hi] = cells.equal_range(key(cell + Eigen::Vector3i(dx, dy, dz)));
+          for (auto it = lo; it != hi; ++it) {
+            if ((map.points[it->second].position_in_world - p).norm() <= radius_m) {
+              group[i] = group[it->second];
+              break;
+            }
+          }
+        }
+    cells.emplace(key(cell), static_cast<int>(i));
+  }
+  return group;
+}
+
+}  // namespace
 
 std::string_view RelocStatusName(RelocStatus status) {
   switch (status) {
@@ -91,6 +129,7 @@ Relocaliser::Relocaliser(proto::ClipMap map, const PinholeCamera& camera,
               map_descriptors_.ptr<uint8_t>(static_cast<int>(i)));
   }
   matcher_ = cv::BFMatcher::create(cv::NORM_HAMMING);
+  point_group_ = GroupNearbyPoints(map_, kSamePointRadiusM);
 }
 
 void Relocaliser::Reset() {
@@ -213,12 +252,18 @@ std::optional<Relocaliser::Estimate> Relocaliser::Relocalise(const vision::Frame
   }
   // The two nearest map descriptors of every keypoint (OpenCV's vectorised Hamming search:
   // the same rule as vision::MatchByDescriptor, several times faster on maps of thousands).
+  // The second best is the nearest descriptor of another place: a point the map holds in
+  // several views (capture-client/map/virtual_views.h) does not compete with itself.
   std::vector<std::vector<cv::DMatch>> nearest;
-  matcher_->knnMatch(features.descriptors, map_descriptors_, nearest, 2);
+  matcher_->knnMatch(features.descriptors, map_descriptors_, nearest, kNearestDescriptors);
   std::vector<vision::FeatureMatch> matches;
   for (const std::vector<cv::DMatch>& n : nearest) {
     if (n.empty() || n[0].distance > options_.reloc_max_distance) continue;
-    if (n.size() > 1 && n[0].distance >= options_.reloc_ratio * n[1].distance) continue;
+    const int place = point_group_[n[0].trainIdx];
+    const auto other = std::find_if(n.begin() + 1, n.end(), [&](const cv::DMatch& m) {
+      return point_group_[m.trainIdx] != place;
+    });
+    if (other != n.end() && n[0].distance >= options_.reloc_ratio * other->distance) continue;
     matches.push_back({n[0].trainIdx, n[0].queryIdx, static_cast<int>(n[0].distance)});
   }
   if (static_cast<int>(matches.size()) < options_.reloc_min_inliers) {

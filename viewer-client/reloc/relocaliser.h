@@ -151,6 +151,7 @@ class Relocaliser {
   std::vector<vision::MatchCandidate> candidates_;  // every map point, id = its index
   cv::Mat map_descriptors_;                         // CV_8UC1, one 32-byte row per point
   cv::Ptr<cv::DescriptorMatcher> matcher_;
+  std::vector<int> point_group_;  // per map point: the first point of its place
   ImageDepthMm no_depth_;                                // zeros: the viewer has no depth
   std::optional<Eigen::Isometry3d> last_, before_last_;  // viewer_from_world of posed frames
   uint64_t frames_ = 0;

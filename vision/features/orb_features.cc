@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/error/check.h"
+#include "vision/features/depth_plane_fit.h"
 
 namespace reenact::vision {
 
@@ -24,6 +25,8 @@ void OrbFeatureOptions::Check() const {
   REENACT_CHECK(depth_edge_ratio > 0 && depth_edge_ratio < 1, "depth_edge_ratio in (0, 1)");
   REENACT_CHECK(depth_edge_radius_px >= 0 && depth_edge_radius_px <= 16,
                 "depth_edge_radius_px in [0, 16]");
+  REENACT_CHECK(depth_fit_radius_px >= 0 && depth_fit_radius_px <= 16,
+                "depth_fit_radius_px in [0, 16]");
 }
 
 int FrameFeatures::CountWithDepth() const {
@@ -178,6 +181,14 @@ FrameFeatures ExtractOrbFeatures(const cv::Mat& gray, const ImageDepthMm& depth,
     const int x = static_cast<int>(std::lround(kp.pt.x)),
               y = static_cast<int>(std::lround(kp.pt.y));
     obs.depth_m = ReliableDepth(depth, depth_scale_m, x, y, options);
+    if (obs.depth_m > 0 && options.depth_fit_radius_px > 0) {
+      const auto fitted = FitDepthPlane(depth, depth_scale_m, kp.pt.x, kp.pt.y,
+                                        {.radius_px = options.depth_fit_radius_px,
+                                         .rel_tolerance = options.depth_edge_ratio});
+      if (fitted && *fitted >= options.min_depth_m && *fitted <= options.max_depth_m) {
+        obs.depth_m = *fitted;
+      }
+    }
     out.keypoints.push_back(kp);
     out.observations.push_back(obs);
     out.points_in_camera.push_back(

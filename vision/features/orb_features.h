@@ -11,7 +11,8 @@
 // do not take every feature. A depth reading is reliable when the 3x3 neighbourhood of the
 // keypoint's pixel has readings that all lie within depth_edge_ratio of the centre's (not on
 // a depth discontinuity, where the pixel may belong to either surface), within
-// [min_depth_m, max_depth_m].
+// [min_depth_m, max_depth_m]; with depth_fit_radius_px a plane through the readings around
+// it then gives the depth.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -37,6 +38,11 @@ struct OrbFeatureOptions {
   double max_depth_m = 6.0;
   double depth_edge_ratio = 0.03;  // (0, 1)
   int depth_edge_radius_px = 1;    // half side of the window checked, [0, 16]
+  // Depth of a keypoint with a reliable reading: 0 = that reading; r > 0 = a plane fitted in
+  // inverse depth to the (2r+1)^2 window (depth_plane_fit.h, tolerance depth_edge_ratio),
+  // evaluated at the sub-pixel keypoint, where the fit is trusted. [0, 16]. Default 0 (the
+  // SLAM's figures were measured with single readings); the clip map uses 4.
+  int depth_fit_radius_px = 0;
   // Sub-pixel keypoints: each keypoint moved to the gradient-weighted corner position
   // (cv::cornerSubPix in a window of half side 2 s, s = scale_factor^octave) on the full
   // image, kept when it stays within 2 s (else the whole-pixel position stays). FAST's own
