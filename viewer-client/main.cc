@@ -8,6 +8,7 @@
 #include "viewer-client/camera/camera_source.h"
 #include "viewer-client/fetch/clip_fetcher.h"
 #include "viewer-client/play/ar_player.h"
+#include "viewer-client/play/ar_window_player.h"
 #include "viewer-client/play/headless_player.h"
 #include "viewer-client/play/window_player.h"
 
@@ -21,10 +22,12 @@ constexpr const char* kUsage =
     "  reenact-viewer play CLIP_ID --server URL [--camera orbit] [--orbit-deg D]\n"
     "                      [--headless --out DIR] [--frames N] [--width W --height H]\n"
     "                      [--cache DIR] [--bare] [--skeleton] [--masks] [--no-mp4]\n"
-    "  reenact-viewer play CLIP_ID --server URL --camera tum:DIR|video:FILE|live[:N]\n"
-    "                      [--calibration FILE] [--clip-clock time|frames] --headless --out DIR\n"
-    "                      [--frames N] [--cache DIR] [--bare] [--skeleton] [--masks] [--no-mp4]\n"
-    "                      [--no-status]\n";
+    "  reenact-viewer play CLIP_ID --server URL --camera CAMERA [--calibration FILE]\n"
+    "                      [--clip-clock time|frames] [--headless --out DIR] [--frames N]\n"
+    "                      [--cache DIR] [--bare] [--skeleton] [--masks] [--no-mp4] [--no-status]\n"
+    "      CAMERA: tum:DIR | video:FILE | live[:N] |\n"
+    "              synthetic:SCENARIO[?frames=N&max_deg=D&subject=0|1&seed=S]\n"
+    "      without --headless: the AR view in a window (space, arrows, +/-, s, c, t, q)\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-viewer", e); }
 
@@ -59,25 +62,40 @@ int Browse(const CommandLine& cl) {
   return 0;
 }
 
+void PrintTruth(const viewer::ArPlaySummary& s) {
+  if (s.truth_frames > 0)
+    std::printf(
+        "against the camera's true pose: %d of %d frames within 2 cm and 1 degree; median "
+        "error %.2f cm, %.3f degrees\n",
+        s.within_2cm_1deg, s.truth_frames, s.median_err_cm, s.median_err_deg);
+}
+
 // AR: the reenactment over the viewer's own camera (viewer-client/play/ar_player.h).
 int PlayAr(const CommandLine& cl, const std::string& clip_id, const std::string& server,
            const std::string& camera_spec) {
-  if (camera_spec.rfind("synthetic:", 0) == 0)
-    return Fail(MakeError("unsupported", "--camera " + camera_spec +
-                                             ": synthetic viewers run in reenact-eval reloc"));
-  if (!cl.Has("headless"))
-    return Fail(MakeError(
-        "unsupported", "--camera " + camera_spec +
-                           ": the AR presentation is headless for now: add --headless --out DIR"));
   for (const char* flag : {"width", "height", "orbit-deg"})
     if (cl.Get(flag))
       return Fail(MakeError(
           "usage",
           std::string("--") + flag + " is for --camera orbit; AR output has the camera's size"));
+  const bool headless = cl.Has("headless");
+  if (!headless) {
+    for (const char* flag : {"out", "masks", "no-mp4"})
+      if (cl.Has(flag) || cl.Get(flag))
+        return Fail(MakeError(
+            "usage",
+            std::string("--") + flag + " is for --headless output; the window writes no files"));
+    if (cl.Get("clip-clock"))
+      return Fail(MakeError("usage",
+                            "--clip-clock is for --headless; in the window the clip follows the "
+                            "window's clock (space pauses, +/- change the speed)"));
+  }
   viewer::ArPlayOptions options;
-  const auto out = cl.Require("out");
-  if (!out.ok()) return Fail(MakeError("usage", "--headless needs --out DIR"));
-  options.out_dir = *out;
+  if (headless) {
+    const auto out = cl.Require("out");
+    if (!out.ok()) return Fail(MakeError("usage", "--headless needs --out DIR"));
+    options.out_dir = *out;
+  }
   const auto frames = cl.GetInt("frames", -1);
   if (!frames.ok()) return Fail(frames.error());
   if (*frames == 0 || *frames < -1) return Fail(MakeError("usage", "--frames must be >= 1"));
@@ -101,6 +119,21 @@ int PlayAr(const CommandLine& cl, const std::string& clip_id, const std::string&
   auto clip = viewer::FetchClip(api, clip_id, cl.GetOr("cache", ".cache/reenact-viewer"));
   if (!clip.ok()) return Fail(clip.error());
   const viewer::Reenactment reenactment(clip->manifest, std::move(clip->frames));
+  if (!headless) {
+    viewer::ArWindowOptions window;
+    window.max_frames = options.max_frames;
+    window.frame = options.frame;
+    window.title = "reenact AR - " + clip->manifest.title;
+    const auto shown = viewer::PlayArInWindow(reenactment, std::move(clip->map), **source, window);
+    if (!shown.ok()) return Fail(shown.error());
+    std::printf(
+        "showed %d camera frames from %s: %d relocalised, %d tracked, %d lost; relocaliser "
+        "%.1f ms, render %.1f ms per frame (medians), %.1f s in all\n",
+        shown->frames, (*source)->description().c_str(), shown->relocalised, shown->tracked,
+        shown->lost, shown->reloc_ms_median, shown->render_ms_median, shown->seconds);
+    PrintTruth(*shown);
+    return 0;
+  }
   const auto summary =
       viewer::PlayArHeadless(reenactment, std::move(clip->map), **source, clip_id, options);
   if (!summary.ok()) return Fail(summary.error());
@@ -113,6 +146,7 @@ int PlayAr(const CommandLine& cl, const std::string& clip_id, const std::string&
               options.out_dir.string().c_str(), options.out_dir.string().c_str(),
               summary->mp4_path.empty() ? "" : (", " + summary->mp4_path).c_str(),
               options.out_dir.string().c_str());
+  PrintTruth(*summary);
   if (!summary->mp4_warning.empty())
     std::cerr << "reenact-viewer: warning: no MP4 written: " << summary->mp4_warning << "\n";
   if (summary->lost == summary->frames)

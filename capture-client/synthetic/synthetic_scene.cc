@@ -201,10 +201,10 @@ SyntheticView SyntheticScene::Render(int frame, const PinholeCamera& camera,
   view.part_labels = ImageLabel8(camera.width, camera.height, 1, kBackgroundLabel);
   const Eigen::Isometry3d camera_from_world = world_from_camera.inverse();
   if (options.draw_room) DrawRoom(*data_->room, camera_from_world, &r, &view);
-  if (data_->skinned)
+  if (options.draw_subject && data_->skinned)
     data_->skinned->Draw(data_->skinned->Skin(data_->skin_poses[frame]), camera_from_world, &r,
                          &view);
-  else
+  else if (options.draw_subject)
     DrawBody(data_->body, data_->posed[frame], camera_from_world, &r, &view);
 
   const Image<double>& z = r.depth();

@@ -38,6 +38,8 @@ struct SyntheticView {
 struct SyntheticRenderOptions {
   // Draw the room (walls, floor, ceiling, furniture). Off: background colour 0, depth 0.
   bool draw_room = true;
+  // Draw the subject. Off: the empty room, as a viewer visiting later sees it (mask, labels 0).
+  bool draw_subject = true;
   // Kinect-like depth errors (depth_noise.h: projector shadow holes at silhouettes, noise,
   // disparity quantisation) as `noise` says, seeded by the scene's seed and the frame
   // index. Mask and labels stay exact.

@@ -11,6 +11,7 @@
 #include "tests/bench/core_bench.h"
 #include "tests/bench/server_bench.h"
 #include "tests/bench/source_bench.h"
+#include "tests/bench/viewer_bench.h"
 
 namespace {
 
@@ -23,7 +24,7 @@ constexpr const char* kUsage =
     "  reenact-bench server ...\n"
     "  reenact-bench sources [--oni FILE] [--tum DIR] [--repeats R] [--json FILE]\n"
     "  reenact-bench capture [--frames N] [--repeats R] [--tum DIR] [--json FILE]\n"
-    "  reenact-bench viewer ...   (not in this build yet)\n";
+    "  reenact-bench viewer [--frames N] [--repeats R] [--json FILE]\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-bench", e); }
 
@@ -54,21 +55,17 @@ int Core(const CommandLine& cl) {
   return printed.ok() ? 0 : Fail(printed.error());
 }
 
-int NotYet(const CommandLine& cl) {
-  return Fail(MakeError("unsupported", "'" + cl.positionals()[0] +
-                                           "' is not in this build yet: it arrives with the "
-                                           "viewer work"));
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
   // Flags of every command; each command reads its own.
   const CommandLineSpec spec{
       {"repeats", "only", "json", "clips", "clients", "seconds", "db", "oni", "tum", "frames"}, {"quick"}};
-  return RunTool(
-      "reenact-bench", kUsage, spec,
-      {{"core", Core}, {"server", bench::RunServerBench},
-       {"sources", bench::RunSourceBench}, {"capture", bench::RunCaptureBench}, {"viewer", NotYet}},
-      argc, argv);
+  return RunTool("reenact-bench", kUsage, spec,
+                 {{"core", Core},
+                  {"server", bench::RunServerBench},
+                  {"sources", bench::RunSourceBench},
+                  {"capture", bench::RunCaptureBench},
+                  {"viewer", bench::RunViewerBench}},
+                 argc, argv);
 }

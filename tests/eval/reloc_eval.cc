@@ -11,11 +11,11 @@
 
 #include "capture-client/record/clip_recorder.h"
 #include "capture-client/source/synthetic_source.h"
-#include "capture-client/synthetic/handheld_trajectory.h"
 #include "capture-client/synthetic/synthetic_scene.h"
 #include "common/error/check.h"
 #include "proto/clip/clip_directory.h"
 #include "tests/eval/quality_cli.h"
+#include "viewer-client/camera/synthetic_camera_source.h"
 
 namespace reenact::eval {
 namespace {
@@ -51,29 +51,6 @@ Expected<proto::ClipMap> RecordMap(const RelocEvalOptions& o,
   std::error_code ec;
   fs::remove_all(dir, ec);
   return map;
-}
-
-struct ViewerTrajectory {
-  std::vector<Eigen::Isometry3d> world_from_viewer;
-  std::vector<double> angle_deg;
-};
-
-ViewerTrajectory MakeTrajectory(const capture::SyntheticScene& scene, int n, double max_deg) {
-  const Eigen::Vector3d centre = scene.skeleton_in_world(0)[Joint::kWaist];
-  const Eigen::Vector3d up = scene.world_up();
-  const Eigen::Vector3d eye0 = scene.world_from_sensor(0).translation();
-  ViewerTrajectory t;
-  std::vector<Eigen::Vector3d> path, target;
-  for (int k = 0; k < n; ++k) {
-    const double a = max_deg * std::sin(2 * std::numbers::pi * k / (n - 1));
-    const Eigen::AngleAxisd turn(a * std::numbers::pi / 180, up);
-    path.push_back(centre + turn * (eye0 - centre));
-    target.push_back(centre);
-    t.angle_deg.push_back(a);
-  }
-  capture::HandheldOptions hand;  // walk-handheld's bob and shake
-  t.world_from_viewer = capture::HandheldSensorPoses(path, target, scene.frame_rate_hz(), hand);
-  return t;
 }
 
 cv::Mat Gray(const ImageRgb8& color) {
@@ -163,7 +140,8 @@ Expected<RelocEvalRun> RunRelocEval(const RelocEvalOptions& options) {
   if (!fresh_start.ok()) return fresh_start.error();
 
   const int n = options.viewer_frames > 0 ? options.viewer_frames : scene->frame_count();
-  const ViewerTrajectory trajectory = MakeTrajectory(*scene, n, options.max_deg);
+  const viewer::SyntheticViewerPath trajectory =
+      viewer::MakeSyntheticViewerPath(*scene, n, options.max_deg);
   std::vector<FrameOutcome> tracked, fresh;
   for (int k = 0; k < n; ++k) {
     const Eigen::Isometry3d& truth = trajectory.world_from_viewer[k];

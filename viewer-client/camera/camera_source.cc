@@ -3,13 +3,14 @@
 #include <charconv>
 
 #include "viewer-client/camera/camera_calibration.h"
+#include "viewer-client/camera/synthetic_camera_source.h"
 #include "viewer-client/camera/tum_directory_source.h"
 #include "viewer-client/camera/video_capture_source.h"
 
 namespace reenact::viewer {
 namespace {
 
-constexpr const char* kKinds = "tum:DIR, video:FILE or live[:N]";
+constexpr const char* kKinds = "tum:DIR, video:FILE, live[:N] or synthetic:SCENARIO";
 
 Expected<PinholeCamera> Calibration(const std::optional<std::filesystem::path>& given,
                                     const std::optional<std::filesystem::path>& fallback,
@@ -55,6 +56,16 @@ Expected<std::unique_ptr<CameraSource>> OpenCameraSource(
     auto camera = Calibration(calibration, std::nullopt, spec);
     if (!camera.ok()) return camera.error();
     return OpenLiveCameraSource(index, *camera);
+  }
+  if (kind == "synthetic") {
+    if (calibration)
+      return MakeError("usage",
+                       "--camera synthetic: renders with the scene's own intrinsics: "
+                       "drop --calibration");
+    if (arg.empty())
+      return MakeError("usage",
+                       "--camera synthetic: needs a scenario, e.g. synthetic:turn-and-kick");
+    return OpenSyntheticCameraSpec(arg);
   }
   return MakeError("usage", "unknown camera '" + std::string(spec) + "': use " + kKinds);
 }

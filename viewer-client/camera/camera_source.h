@@ -6,11 +6,14 @@
 //                 columns of associations.txt; tum_directory_source.h)
 //   video:FILE    a video file (OpenCV VideoCapture: whatever FFmpeg decodes)
 //   live[:N]      camera N (default 0) through OpenCV VideoCapture
+//   synthetic:SCENARIO[?...]  a viewer walking around an [Eval] scene, with the true pose of
+//                 every frame (synthetic_camera_source.h; intrinsics from the scene)
 //
-// Intrinsics always come from a calibration file (camera_calibration.h): --calibration FILE,
-// or for tum:DIR the file DIR/calibration.yaml when present (docs/calibration/ has the TUM
-// Kinects'). Frames must have the calibration's size.
+// Intrinsics of real cameras always come from a calibration file (camera_calibration.h):
+// --calibration FILE, or for tum:DIR the file DIR/calibration.yaml when present (docs/calibration/
+// has the TUM Kinects'). Frames must have the calibration's size.
 
+#include <Eigen/Geometry>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -26,12 +29,15 @@ namespace reenact::viewer {
 struct CameraFrame {
   double timestamp_s = 0;  // the source's clock (TUM: its timestamp; video: position)
   ImageRgb8 color;         // R G B, the calibration's size
+  // The camera's true pose in the clip's world frame (OpenCV axes), where the source knows it
+  // (synthetic:); evaluations compare the relocalised pose with it.
+  std::optional<Eigen::Isometry3d> true_world_from_viewer;
 };
 
 class CameraSource {
  public:
   virtual ~CameraSource() = default;
-  // "tum:DIR", "video:FILE", "live:0".
+  // "tum:DIR", "video:FILE", "live:0", "synthetic:turn-and-kick (...)".
   virtual std::string description() const = 0;
   virtual const PinholeCamera& camera() const = 0;
   // The next frame; nullopt at the end of a file or sequence. Errors: a frame that cannot be
@@ -42,7 +48,9 @@ class CameraSource {
 // Opens a source from its spec (above). calibration: the --calibration file, if given.
 // Errors: "usage" for an unknown or malformed spec, a missing calibration (saying how to give
 // one); those of LoadCameraCalibration; "not_found" for a missing directory or file;
-// "unavailable" for a live camera that cannot be opened or delivers no frame.
+// "unavailable" for a live camera that cannot be opened or delivers no frame; "usage" for a
+// calibration given to synthetic: (its intrinsics are the scene's); those of
+// OpenSyntheticCameraSpec.
 Expected<std::unique_ptr<CameraSource>> OpenCameraSource(
     std::string_view spec, const std::optional<std::filesystem::path>& calibration);
 

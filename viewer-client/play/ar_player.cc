@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -95,7 +96,12 @@ Expected<ArCompositor> ArCompositor::Create(const Reenactment& reenactment, prot
   return ArCompositor(reenactment, std::move(relocaliser).value(), camera, renderer, options);
 }
 
-Expected<ArFrame> ArCompositor::Process(const CameraFrame& frame) {
+void ArCompositor::SetPresentation(bool textured, bool draw_skeleton) {
+  options_.textured = textured;
+  options_.draw_skeleton = draw_skeleton;
+}
+
+Expected<ArFrame> ArCompositor::Process(const CameraFrame& frame, std::optional<int> clip_frame) {
   const ImageRgb8& image = frame.color;
   if (image.data.empty() || image.width <= 0 || image.height <= 0)
     return MakeError("invalid_argument", "camera frame " + std::to_string(frames_) + " is empty");
@@ -113,12 +119,20 @@ Expected<ArFrame> ArCompositor::Process(const CameraFrame& frame) {
     return MakeError("invalid_argument",
                      "camera frame " + std::to_string(frames_) + " has no finite timestamp");
 
+  using Clock = std::chrono::steady_clock;
+  const auto ms_since = [](Clock::time_point t) {
+    return 1e3 * std::chrono::duration<double>(Clock::now() - t).count();
+  };
+  const auto start = Clock::now();
   ArFrame out;
   out.camera_frame = frames_++;
   out.timestamp_s = frame.timestamp_s;
   if (!first_timestamp_s_) first_timestamp_s_ = frame.timestamp_s;
   const int count = reenactment_.frame_count();
-  if (options_.clock == ClipClock::kFrameIndex) {
+  if (clip_frame) {
+    REENACT_CHECK(*clip_frame >= 0 && *clip_frame < count, "clip_frame out of range");
+    out.clip_frame = *clip_frame;
+  } else if (options_.clock == ClipClock::kFrameIndex) {
     out.clip_frame = out.camera_frame % count;
   } else {
     const double elapsed = std::max(0.0, frame.timestamp_s - *first_timestamp_s_);
@@ -130,24 +144,38 @@ Expected<ArFrame> ArCompositor::Process(const CameraFrame& frame) {
   auto reloc = relocaliser_.ProcessFrame(image);
   if (!reloc.ok()) return reloc.error();
   out.reloc = std::move(reloc).value();
+  out.true_world_from_viewer = frame.true_world_from_viewer;
+  if (out.true_world_from_viewer && out.reloc.viewer_from_world) {
+    const Eigen::Isometry3d estimate = out.reloc.viewer_from_world->inverse();
+    const Eigen::Isometry3d& truth = *out.true_world_from_viewer;
+    out.err_cm = 100 * (estimate.translation() - truth.translation()).norm();
+    out.err_deg = Eigen::AngleAxisd(truth.linear().transpose() * estimate.linear()).angle() * 180 /
+                  std::numbers::pi;
+  }
 
+  auto t = Clock::now();
   ImageRgb8 background = Undistorted(image, camera_);
+  out.composite_ms = ms_since(t);
   if (out.reloc.viewer_from_world) {
+    t = Clock::now();
     ReenactedFrame rf = reenactment_.Build(out.clip_frame, render_camera_,
                                            *out.reloc.viewer_from_world, std::ref(textures_));
     rf.draw.background = &background;
     rf.draw.textured = options_.textured;
     if (!options_.draw_skeleton) rf.draw.bones.clear();
     out.texture_frame = rf.texture_frame;
-    const auto t0 = std::chrono::steady_clock::now();
+    out.select_ms = ms_since(t);
+    t = Clock::now();
     out.out = renderer_.Render(rf.draw);
-    out.render_ms =
-        1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.render_ms = ms_since(t);
   } else {
     out.out.color = std::move(background);
     out.out.subject_mask = ImageGray8(camera_.width, camera_.height, 1, 0);
   }
+  t = Clock::now();
   if (options_.draw_status) DrawArStatus(out.reloc, out.out.color);
+  out.composite_ms += ms_since(t);
+  out.total_ms = ms_since(start);
   return out;
 }
 
@@ -170,6 +198,32 @@ void DrawArStatus(const RelocFrameResult& reloc, ImageRgb8& image) {
               cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
 }
 
+void ArSummaryBuilder::Add(const ArFrame& frame) {
+  const RelocFrameResult& r = frame.reloc;
+  ++counts_.frames;
+  counts_.relocalised += r.status == RelocStatus::kRelocalised;
+  counts_.tracked += r.status == RelocStatus::kTracked;
+  counts_.lost += r.status == RelocStatus::kLost;
+  reloc_ms_.push_back(r.ms);
+  if (r.viewer_from_world) render_ms_.push_back(frame.render_ms);
+  if (!frame.true_world_from_viewer) return;
+  ++counts_.truth_frames;
+  if (!frame.err_cm || !frame.err_deg) return;
+  err_cm_.push_back(*frame.err_cm);
+  err_deg_.push_back(*frame.err_deg);
+  counts_.within_2cm_1deg += *frame.err_cm <= 2 && *frame.err_deg <= 1;
+}
+
+ArPlaySummary ArSummaryBuilder::summary() const {
+  const auto median = [](const std::vector<double>& v) { return v.empty() ? 0 : UpperMedian(v); };
+  ArPlaySummary s = counts_;
+  s.reloc_ms_median = median(reloc_ms_);
+  s.render_ms_median = median(render_ms_);
+  s.median_err_cm = median(err_cm_);
+  s.median_err_deg = median(err_deg_);
+  return s;
+}
+
 Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::ClipMap map,
                                        CameraSource& camera, const std::string& clip_id,
                                        const ArPlayOptions& options) {
@@ -187,11 +241,10 @@ Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::Cl
     return MakeError(
         "io", "cannot create output folder " + options.out_dir.string() + ": " + ec.message());
 
-  ArPlaySummary summary;
+  ArSummaryBuilder builder;
   std::vector<ImageRgb8> written;
-  std::vector<double> reloc_ms, render_ms;
   nlohmann::json frames_json = nlohmann::json::array();
-  while (options.max_frames < 0 || summary.frames < options.max_frames) {
+  while (options.max_frames < 0 || builder.frames() < options.max_frames) {
     auto next = camera.Next();
     if (!next.ok()) return next.error();
     if (!next->has_value()) break;
@@ -212,11 +265,7 @@ Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::Cl
         return s.error();
     }
     const RelocFrameResult& r = frame->reloc;
-    summary.relocalised += r.status == RelocStatus::kRelocalised;
-    summary.tracked += r.status == RelocStatus::kTracked;
-    summary.lost += r.status == RelocStatus::kLost;
-    reloc_ms.push_back(r.ms);
-    if (r.viewer_from_world) render_ms.push_back(frame->render_ms);
+    builder.Add(*frame);
     frames_json.push_back(
         {{"output", i},
          {"timestamp_s", frame->timestamp_s},
@@ -231,15 +280,19 @@ Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::Cl
          {"world_from_viewer",
           r.viewer_from_world ? PoseJson(r.viewer_from_world->inverse()) : nlohmann::json(nullptr)},
          {"file", std::string("frames/") + name}});
+    if (frame->true_world_from_viewer) {
+      nlohmann::json& f = frames_json.back();
+      f["true_world_from_viewer"] = PoseJson(*frame->true_world_from_viewer);
+      f["err_cm"] = frame->err_cm ? nlohmann::json(*frame->err_cm) : nlohmann::json(nullptr);
+      f["err_deg"] = frame->err_deg ? nlohmann::json(*frame->err_deg) : nlohmann::json(nullptr);
+    }
     written.push_back(std::move(frame->out.color));
-    ++summary.frames;
   }
+  ArPlaySummary summary = builder.summary();
   if (summary.frames == 0)
     return MakeError("empty", "camera " + camera.description() +
                                   " delivered no frames: check the path, the sequence's rgb.txt "
                                   "or that the camera is not in use by another program");
-  summary.reloc_ms_median = reloc_ms.empty() ? 0 : UpperMedian(reloc_ms);
-  summary.render_ms_median = render_ms.empty() ? 0 : UpperMedian(render_ms);
 
   const ImageRgb8 sheet =
       MakeContactSheet(written, options.contact_sheet_columns, options.contact_sheet_thumb_width);
@@ -258,18 +311,22 @@ Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::Cl
       summary.mp4_warning = writer.error().message;
     }
   }
-  const nlohmann::json render = {
-      {"clip_id", clip_id},
-      {"presentation", "ar"},
-      {"camera_source", camera.description()},
-      {"clip_clock", std::string(ClipClockName(options.frame.clock))},
-      {"camera", CameraJson(intrinsics)},
-      {"relocalised", summary.relocalised},
-      {"tracked", summary.tracked},
-      {"lost", summary.lost},
-      {"reloc_ms_median", summary.reloc_ms_median},
-      {"render_ms_median", summary.render_ms_median},
-      {"frames", frames_json}};
+  nlohmann::json render = {{"clip_id", clip_id},
+                           {"presentation", "ar"},
+                           {"camera_source", camera.description()},
+                           {"clip_clock", std::string(ClipClockName(options.frame.clock))},
+                           {"camera", CameraJson(intrinsics)},
+                           {"relocalised", summary.relocalised},
+                           {"tracked", summary.tracked},
+                           {"lost", summary.lost},
+                           {"reloc_ms_median", summary.reloc_ms_median},
+                           {"render_ms_median", summary.render_ms_median},
+                           {"frames", frames_json}};
+  if (summary.truth_frames > 0)
+    render["truth"] = {{"frames", summary.truth_frames},
+                       {"within_2cm_1deg", summary.within_2cm_1deg},
+                       {"median_err_cm", summary.median_err_cm},
+                       {"median_err_deg", summary.median_err_deg}};
   std::ofstream json(options.out_dir / "render.json");
   json << render.dump(2) << "\n";
   if (!json) return MakeError("io", "cannot write " + (options.out_dir / "render.json").string());

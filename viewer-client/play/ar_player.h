@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common/error/expected.h"
 #include "common/geometry/pinhole_camera.h"
@@ -59,7 +60,16 @@ struct ArFrame {
   int texture_frame = -1;  // n_bar; -1 when lost or no stored frame fits
   RelocFrameResult reloc;  // state, pose (viewer_from_world), inliers, timing
   RenderedFrame out;       // the composite (camera size) and the subject's mask
-  double render_ms = 0;    // drawing and read-back (0 when lost)
+  // Wall time of each stage, milliseconds (reloc.ms: relocalising or tracking):
+  double select_ms = 0;     // texture selection and the draw list (Reenactment::Build; 0 lost)
+  double render_ms = 0;     // drawing over the camera image and read-back (0 when lost)
+  double composite_ms = 0;  // the camera image as background (undistortion) and the banner
+  double total_ms = 0;      // the whole of Process
+  // The camera's true pose where the source knows it (synthetic:), and with a pose the
+  // relocalised pose's error against it: camera-centre distance (cm) and rotation angle of
+  // R_true^T R_est (degrees).
+  std::optional<Eigen::Isometry3d> true_world_from_viewer;
+  std::optional<double> err_cm, err_deg;
 };
 
 // Turns camera frames into AR frames. Holds the relocaliser's track and the renderer's
@@ -75,10 +85,15 @@ class ArCompositor {
                                        const PinholeCamera& camera, Renderer& renderer,
                                        const ArFrameOptions& options = {});
 
-  // One camera frame. Errors: "invalid_argument" when its image is empty, not RGB or not of
+  // One camera frame. clip_frame, when given, is the clip frame k to show instead of the clip
+  // clock's (an interactive player's own clock: pause, scrub, speed); CheckError unless in
+  // [0, frame_count). Errors: "invalid_argument" when its image is empty, not RGB or not of
   // the camera's size (the message gives both sizes: the calibration does not fit the
   // camera), or its timestamp is not finite.
-  Expected<ArFrame> Process(const CameraFrame& frame);
+  Expected<ArFrame> Process(const CameraFrame& frame, std::optional<int> clip_frame = {});
+
+  // The presentation toggles of the frames to come (ArFrameOptions' textured, draw_skeleton).
+  void SetPresentation(bool textured, bool draw_skeleton);
 
   const PinholeCamera& camera() const { return camera_; }
   // The camera the renderer draws with: camera() without distortion.
@@ -121,9 +136,26 @@ struct ArPlaySummary {
   int relocalised = 0, tracked = 0, lost = 0;
   double reloc_ms_median = 0;   // Relocaliser::ProcessFrame
   double render_ms_median = 0;  // over posed frames
+  // Against the truth, when the camera knows it (truth_frames > 0): frames within 2 cm and 1
+  // degree (a lost frame counts as outside), and median errors over posed frames.
+  int truth_frames = 0, within_2cm_1deg = 0;
+  double median_err_cm = 0, median_err_deg = 0;
   double seconds = 0;           // wall time including file output
   std::string mp4_path;         // empty if no video was written
   std::string mp4_warning;      // why not, if so
+};
+
+// Adds frames up into an ArPlaySummary: the state counts, the medians, the truth figures
+// (seconds and the MP4 fields are the caller's).
+class ArSummaryBuilder {
+ public:
+  void Add(const ArFrame& frame);
+  ArPlaySummary summary() const;
+  int frames() const { return counts_.frames; }
+
+ private:
+  ArPlaySummary counts_;
+  std::vector<double> reloc_ms_, render_ms_, err_cm_, err_deg_;
 };
 
 // The headless AR play: every camera frame through ArCompositor, written under out_dir as the
@@ -131,7 +163,9 @@ struct ArPlaySummary {
 // reenactment.mp4, render.json with "presentation": "ar", the camera's intrinsics, the clip
 // clock, and per frame the camera frame's timestamp, clip frame k, texture frame n_bar, state
 // ("relocalised" / "tracked" / "lost"), features, matches, inliers, reloc_ms, the lost reason
-// and world_from_viewer (row-major 4x4, or null when lost).
+// and world_from_viewer (row-major 4x4, or null when lost); with a camera that knows its true
+// pose also true_world_from_viewer, err_cm and err_deg per frame (null when lost) and a
+// "truth" object with frames, within_2cm_1deg, median_err_cm and median_err_deg.
 // Errors: those of ArCompositor::Create and Process, of the camera ("empty" when it delivers
 // no frame at all), of the renderer and of writing files.
 Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::ClipMap map,

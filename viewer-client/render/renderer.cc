@@ -346,6 +346,15 @@ int Renderer::UploadTexture(const StoredTexture& texture) {
 
 size_t Renderer::texture_count() const { return impl_->textures.size(); }
 
+std::string Renderer::driver() const {
+  impl_->MakeCurrent();
+  const auto text = [](GLenum name) {
+    const GLubyte* s = glGetString(name);
+    return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
+  };
+  return text(GL_RENDERER) + ", " + text(GL_VERSION);
+}
+
 void Renderer::ClearTextures() {
   impl_->MakeCurrent();
   impl_->textures.clear();

@@ -12,14 +12,14 @@
 // 50 m): a point that PinholeCamera::Project maps to (u, v) lights output pixel
 // (round(u), round(v)). Distortion of either camera is ignored on the GPU.
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "common/error/expected.h"
 #include "common/geometry/pinhole_camera.h"
@@ -115,6 +115,9 @@ class Renderer {
 
   int width() const;
   int height() const;
+  // The driver, as GL_RENDERER and GL_VERSION say, e.g. "llvmpipe (LLVM 15.0.6, 256 bits),
+  // 4.5 (Core Profile) Mesa 22.3.6".
+  std::string driver() const;
 
  private:
   struct Impl;

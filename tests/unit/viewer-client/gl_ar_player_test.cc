@@ -130,7 +130,7 @@ class ListSource : public CameraSource {
 };
 
 CameraFrame Grey(const PinholeCamera& camera, double t) {
-  return CameraFrame{t, ImageRgb8(camera.width, camera.height, 3, 128)};
+  return CameraFrame{t, ImageRgb8(camera.width, camera.height, 3, 128), {}};
 }
 
 // Camera frames i = 0..N-1 walk from 0 to 20 degrees about the subject while the subject
@@ -150,7 +150,7 @@ TEST(GlArCompositor, SubjectLandsOnTheTrueSilhouette) {
   for (int i = 0; i < kFrames; ++i) {
     const Eigen::Isometry3d world_from_viewer = ViewerPose(20.0 * i / (kFrames - 1));
     const capture::SyntheticView view = clip.scene.Render(i, camera, world_from_viewer);
-    auto frame = ar->Process(CameraFrame{i / 30.0, view.color});
+    auto frame = ar->Process(CameraFrame{i / 30.0, view.color, {}});
     ASSERT_TRUE(frame.ok()) << frame.error().message;
     EXPECT_EQ(frame->clip_frame, i);
     ASSERT_TRUE(frame->reloc.viewer_from_world.has_value())
@@ -280,7 +280,7 @@ TEST(GlArCompositor, RefusesAFrameOfAnotherSizeThanTheCalibration) {
   Renderer renderer = MakeRenderer(camera);
   auto ar = ArCompositor::Create(clip.reenactment, clip.map, camera, renderer);
   ASSERT_TRUE(ar.ok());
-  auto frame = ar->Process(CameraFrame{0, ImageRgb8(320, 240, 3, 128)});
+  auto frame = ar->Process(CameraFrame{0, ImageRgb8(320, 240, 3, 128), {}});
   ASSERT_FALSE(frame.ok());
   EXPECT_EQ(frame.error().code, "invalid_argument");
   EXPECT_NE(frame.error().message.find("320x240"), std::string::npos) << frame.error().message;
@@ -313,7 +313,7 @@ TEST(GlArPlayHeadless, WritesFramesSheetAndPerFrameStateAndPose) {
   std::vector<CameraFrame> frames;
   frames.push_back(Grey(camera, 0));  // lost
   for (int i = 1; i < 4; ++i)
-    frames.push_back(CameraFrame{i / 30.0, clip.scene.Render(i, camera, ViewerPose(5)).color});
+    frames.push_back(CameraFrame{i / 30.0, clip.scene.Render(i, camera, ViewerPose(5)).color, {}});
   ListSource source(camera, frames);
   ArPlayOptions options;
   options.out_dir =

@@ -1,6 +1,6 @@
 // Layer rules of DESIGN.md for vision/ and the viewer: vision/ builds on common/, Eigen,
 // OpenCV and the standard library only; the viewer never includes capture-client/ (what both
-// clients need lives in vision/ or proto/).
+// clients need lives in vision/ or proto/) but for the synthetic scenes (below).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -44,11 +44,30 @@ TEST(VisionDependencies, IncludesOnlyCommonVisionEigenOpenCvAndStd) {
   }
 }
 
+// The one exception: the synthetic scenes (capture-client/synthetic/, the library
+// reenact_synthetic -> common) for the viewer's synthetic camera; they in turn include nothing
+// of the capture pipeline.
 TEST(VisionDependencies, ViewerNeverIncludesTheCaptureClient) {
   const auto includes = Includes("viewer-client");
   ASSERT_GT(includes.size(), 10u);
   for (const auto& [file, header] : includes) {
-    EXPECT_FALSE(StartsWith(header, "capture-client/")) << file << " includes " << header;
+    EXPECT_FALSE(StartsWith(header, "capture-client/") &&
+                 !StartsWith(header, "capture-client/synthetic/"))
+        << file << " includes " << header;
+  }
+}
+
+TEST(VisionDependencies, SyntheticScenesIncludeNoCapturePipeline) {
+  const auto includes = Includes("capture-client/synthetic");
+  ASSERT_GT(includes.size(), 10u);
+  for (const auto& [file, header] : includes) {
+    EXPECT_FALSE(StartsWith(header, "capture-client/") &&
+                 !StartsWith(header, "capture-client/synthetic/") &&
+                 header != "capture-client/source/text_file.h")
+        << file << " includes " << header;
+    EXPECT_FALSE(StartsWith(header, "proto/") || StartsWith(header, "vision/") ||
+                 StartsWith(header, "viewer-client/"))
+        << file << " includes " << header;
   }
 }
 
