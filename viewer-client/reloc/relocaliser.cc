@@ -64,6 +64,7 @@ std::string_view RelocStatusName(RelocStatus status) {
 
 void RelocaliserOptions::Check() const {
   features.Check();
+  smoothing.Check();
   REENACT_CHECK(min_map_points >= 4, "min_map_points must be >= 4");
   REENACT_CHECK(reloc_max_distance >= 0 && reloc_max_distance <= 256,
                 "reloc_max_distance must be in [0, 256]");
@@ -114,7 +115,8 @@ Relocaliser::Relocaliser(proto::ClipMap map, const PinholeCamera& camera,
     : map_(std::move(map)),
       camera_(camera),
       options_(options),
-      no_depth_(camera.width, camera.height, 1, 0) {
+      no_depth_(camera.width, camera.height, 1, 0),
+      smoother_(options.smoothing) {
   candidates_.reserve(map_.points.size());
   for (size_t i = 0; i < map_.points.size(); ++i) {
     vision::MatchCandidate c;
@@ -135,6 +137,7 @@ Relocaliser::Relocaliser(proto::ClipMap map, const PinholeCamera& camera,
 void Relocaliser::Reset() {
   last_.reset();
   before_last_.reset();
+  smoother_.Reset();
 }
 
 Expected<RelocFrameResult> Relocaliser::ProcessFrame(const ImageRgb8& image) {
@@ -189,11 +192,18 @@ Expected<RelocFrameResult> Relocaliser::ProcessFrame(const cv::Mat& image) {
     if (estimate) result.status = RelocStatus::kRelocalised;
   }
   if (estimate) {
+    // The search follows the frames' own poses (a smoothed prediction lags behind fast
+    // turns); what the user sees is smoothed.
+    before_last_ = last_;
+    last_ = estimate->viewer_from_world;
+    if (options_.smooth) {
+      if (result.status == RelocStatus::kRelocalised) smoother_.Reset();
+      estimate->viewer_from_world =
+          smoother_.Update(estimate->viewer_from_world, estimate->information);
+    }
     result.viewer_from_world = estimate->viewer_from_world;
     result.matches = estimate->matches;
     result.inliers = estimate->inliers;
-    before_last_ = last_;
-    last_ = estimate->viewer_from_world;
   } else {
     result.status = RelocStatus::kLost;
     Reset();
@@ -214,7 +224,8 @@ Relocaliser::Estimate Relocaliser::Refine(const Eigen::Isometry3d& start,
   }
   const vision::PoseRefinementResult refined = vision::RefinePose(
       start, observations, camera_.fx, camera_.fy, options_.noise, options_.refinement);
-  return {refined.sensor_from_world, static_cast<int>(matches.size()), refined.num_inliers};
+  return {refined.sensor_from_world, static_cast<int>(matches.size()), refined.num_inliers,
+          refined.information};
 }
 
 Relocaliser::Estimate Relocaliser::TrackFrom(const Eigen::Isometry3d& predicted,

@@ -107,6 +107,17 @@ PoseRefinementResult RefinePose(const Eigen::Isometry3d& initial_sensor_from_wor
   }
   result.sensor_from_world = pose;
   result.num_inliers = Classify(pose, observations, fx, fy, noise, result.inlier);
+  if (result.num_inliers >= 3) {
+    for (size_t i = 0; i < observations.size(); ++i) {
+      if (!result.inlier[i]) continue;
+      const Eigen::Vector3d pc = pose * observations[i].point_in_world;
+      const ObservationResidual r =
+          EvaluateObservation(pc, observations[i].observation, fx, fy, noise);
+      if (!r.valid) continue;
+      const Eigen::Matrix<double, 3, 6> j = r.d_r_d_point * PointJacobianWrtPose(pc);
+      result.information.noalias() += r.HuberWeight() * j.transpose() * j;
+    }
+  }
   return result;
 }
 

@@ -32,6 +32,10 @@ struct PoseRefinementResult {
   Eigen::Isometry3d sensor_from_world = Eigen::Isometry3d::Identity();
   std::vector<char> inlier;  // per observation, 1 = inlier at the final pose
   int num_inliers = 0;
+  // J^T W J over the final inliers at the final pose (Huber weights W, whitened residuals):
+  // the inverse covariance of the pose update delta (observation_model.h). Zero when fewer
+  // than 3 inliers.
+  Eigen::Matrix<double, 6, 6> information = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 // fx, fy: the camera's focal lengths in pixels. Preconditions (CHECK): valid options and
