@@ -6,6 +6,7 @@
 #include "capture-client/record/clip_recorder.h"
 #include "capture-client/skeleton/skeleton_track_spec.h"
 #include "capture-client/source/frame_source.h"
+#include "capture-client/tracker/tracker_skeleton_source.h"
 #include "common/cli/command_line.h"
 #include "proto/clip/clip_directory.h"
 
@@ -24,9 +25,11 @@ constexpr const char* kUsage =
     "                body=)\n"
     "      body=FILE.glb: a glTF skinned mesh (e.g. ../shared/data/models/CesiumMan.glb)\n"
     "                instead of the procedural body; body_height=M scales it\n"
-    "      SKEL: source (default: the source's own skeletons) | json:FILE | FILE.json |\n"
-    "            kinect:FILE (UTKinect, MSR Action3D skeleton3D, MSR DailyActivity3D), each\n"
-    "            with ?frame_offset=N, ?time_offset_s=S, ?tolerance_s=S\n"
+    "      SKEL: source (default: the source's own skeletons) | track (our depth tracker:\n"
+    "            start in the calibration pose, facing the sensor, arms out to the sides) |\n"
+    "            json:FILE | FILE.json | kinect:FILE (UTKinect, MSR Action3D skeleton3D,\n"
+    "            MSR DailyActivity3D), each with ?frame_offset=N, ?time_offset_s=S,\n"
+    "            ?tolerance_s=S\n"
     "      --poses: auto (default) = the source's poses when it has them, else RGB-D SLAM;\n"
     "               slam = SLAM even for sources with poses\n"
     "  reenact-capture info DIR\n"
@@ -51,7 +54,8 @@ int Record(const CommandLine& cl) {
     return Fail(MakeError("usage", "--poses " + poses + ": expected auto or slam"));
   options.poses = poses == "slam" ? capture::PoseSource::kSlam : capture::PoseSource::kAuto;
   std::optional<capture::SkeletonTrack> track;
-  if (const std::string skeleton = cl.GetOr("skeleton", "source"); skeleton != "source") {
+  const std::string skeleton_spec = cl.GetOr("skeleton", "source");
+  if (const std::string& skeleton = skeleton_spec; skeleton != "source" && skeleton != "track") {
     auto loaded = capture::LoadSkeletonTrack(skeleton);
     if (!loaded.ok()) return Fail(loaded.error());
     track = std::move(loaded).value();
@@ -62,12 +66,19 @@ int Record(const CommandLine& cl) {
   }
   auto source = capture::OpenFrameSource(*source_spec);
   if (!source.ok()) return Fail(source.error());
+  std::optional<capture::TrackerSkeletonSource> tracker;
+  if (skeleton_spec == "track") {
+    tracker.emplace((*source)->info());
+    options.frame_skeletons = tracker->Function();
+    std::cout << "skeletons from the depth tracker" << std::endl;
+  }
 
   options.max_frames = static_cast<int>(*frames);
   options.title = cl.GetOr("title", "");
   options.author = cl.GetOr("author", "");
   std::cout << "recording " << (*source)->info().description << " -> " << *out << std::endl;
   const auto summary = capture::RecordClip(**source, *out, options);
+  if (tracker) std::cout << tracker->stats().Describe() << std::endl;
   if (!summary.ok()) return Fail(summary.error());
   std::printf(
       "recorded %d frames in %.1f s: %.1f KB per frame, map %zu points (%.1f KB), "

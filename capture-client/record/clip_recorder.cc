@@ -80,6 +80,13 @@ Status CheckFrameSizes(const SensorFrame& f, const SensorInfo& info, int index) 
 // The frame's skeleton in the sensor frame, from the lookup or the source.
 Expected<std::optional<Skeleton>> SkeletonInSensor(const SensorFrame& f, const SensorInfo& info,
                                                    int index, const RecordOptions& options) {
+  if (options.frame_skeletons) {
+    auto s = options.frame_skeletons(index, f);
+    if (!s.ok()) return s.error();
+    const bool any_joint = *s && std::any_of((*s)->confidence.begin(), (*s)->confidence.end(),
+                                             [](double c) { return c > 0; });
+    return any_joint ? *s : std::nullopt;
+  }
   if (options.skeletons) {
     std::optional<Skeleton> s = options.skeletons(index, f.timestamp_s);
     const bool any_joint = s && std::any_of(s->confidence.begin(), s->confidence.end(),
@@ -181,8 +188,10 @@ Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::p
                                       " has no sensor pose although the frames before it had");
     }
 
+    const auto skeleton_start = Clock::now();
     auto skeleton = SkeletonInSensor(f, info, index, options);
     if (!skeleton.ok()) return skeleton.error();
+    times.tracker_ms.push_back(options.frame_skeletons ? MsSince(skeleton_start) : 0.0);
 
     // The person mask: the source's, else segmented (SLAM needs it before it tracks).
     const auto segment_start = Clock::now();

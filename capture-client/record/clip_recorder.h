@@ -6,8 +6,9 @@
 // manifest.
 //
 // Per source frame, in this order:
-//  1. Skeleton in the sensor frame: from options.skeletons when set (an imported track, a
-//     tracker), else the source's own (moved out of the world by the source's pose).
+//  1. Skeleton in the sensor frame: from options.frame_skeletons when set (a tracker that
+//     reads the frame's depth), else options.skeletons (an imported track), else the
+//     source's own (moved out of the world by the source's pose).
 //  2. Person mask: the source's own, else segmentation from depth and skeleton
 //     (segment/person_segmenter.h). A frame with neither has no mask, and SLAM sees all of
 //     it, a subject in view included: a track should cover every frame the subject is in.
@@ -49,6 +50,13 @@ enum class PoseSource {
 // the sensor frame (OpenCV camera axes, metres), or nullopt when there is none.
 using SkeletonLookup = std::function<std::optional<Skeleton>(int64_t index, double timestamp_s)>;
 
+// The skeleton of a source frame computed from the frame itself (depth, and its sensor pose
+// when the source knows it), in the sensor frame, or nullopt when there is none. Called once
+// per source frame, in order (a tracker keeps state between frames); `frame` is valid only
+// during the call. An Error stops the recording.
+using FrameSkeletonSource =
+    std::function<Expected<std::optional<Skeleton>>(int64_t index, const SensorFrame& frame)>;
+
 struct RecordOptions {
   int max_frames = -1;         // source frames to read, -1 = until the source ends; else >= 1
   int crop_margin_px = 12;     // margin around the person mask's bounding box, >= 0
@@ -69,6 +77,9 @@ struct RecordOptions {
   slam::SlamOptions slam;
   // Skeletons from outside the source; empty = the source's own.
   SkeletonLookup skeletons;
+  // Skeletons from the frames themselves (tracker/skeleton_tracker.h); takes precedence over
+  // `skeletons`; empty = none.
+  FrameSkeletonSource frame_skeletons;
   // Cylinder model (Eq. 2-4): per-part median over the 3 best frames by F(n), which halves
   // the radius error of the thesis's single frame on noisy skeletons (reenact-bench core).
   ModelBuildOptions model{.representative = {}, .fit = {}, .robust_k = 3};
@@ -79,6 +90,7 @@ struct RecordOptions {
 // Wall time of each stage per stored or skipped source frame, milliseconds, in frame order.
 struct RecordStageTimes {
   std::vector<double> source_ms;   // the source's Next(): reading and decoding
+  std::vector<double> tracker_ms;  // frame_skeletons (a tracker); 0 without one
   std::vector<double> segment_ms;  // 0 where the source gave the mask
   std::vector<double> slam_ms;     // 0 with source poses
   std::vector<double> encode_ms;   // crop + JPEG/PNG; 0 for frames not stored

@@ -1,0 +1,87 @@
+#pragma once
+// Calibration of the tracker's body from one depth frame of the calibration pose (standing,
+// facing the sensor, arms held out to the sides; the thesis's representative-frame criteria):
+//  1. Body frame from the detected person (person_detector.h): up = the floor's normal,
+//     forward = from the person towards the sensor across up, left = up x forward.
+//  2. Standing height H = the person's top above the floor (head top). The pose test: the
+//     lateral extent of the points between 0.6 H and 0.95 H above the floor (fingertip to
+//     fingertip) is at least min_span_ratio H (a span is about H with arms out, 0.3 H with
+//     arms down), and its middle lies within max_offset_ratio H of the legs' (the points
+//     between 0.3 H and 0.5 H) median lateral position (both arms out, not one).
+//  3. Shape: average adult proportions scaled to H (BodyShape::FromHeight), arm lengths
+//     scaled to the span (span / 2 = shoulder half width + upper arm + forearm + the 0.062 H
+//     from palm centre to fingertip), within [0.8, 1.25] of the proportional length.
+//  4. Pose: arms out sideways, placed at the legs' lateral position, torso_radius behind the
+//     torso's front surface; refined by the model fit (body_fit.h), then each capsule radius
+//     re-estimated as the median distance to its axis of the points nearest to it (middle
+//     70% of the axis), within [0.6, 1.5] of the proportional radius, and fitted again
+//     (refine_rounds times). Bone lengths are then fixed for tracking.
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "capture-client/tracker/articulated_body.h"
+#include "capture-client/tracker/body_fit.h"
+#include "capture-client/tracker/person_detector.h"
+#include "common/model/cylinder_model.h"
+
+namespace reenact::capture {
+
+struct CalibrationOptions {
+  double min_height_m = 1.0;  // plausible standing height, 0 < min < max
+  double max_height_m = 2.3;
+  double min_span_ratio = 0.75;    // arm span / height at least, > 0
+  double max_offset_ratio = 0.08;  // span middle vs legs, / height, > 0
+  int refine_rounds = 2;           // radius re-estimation rounds, >= 0
+  BodyFitOptions fit{.iterations = 20};
+
+  void Check() const;
+};
+
+enum class CalibrationStatus {
+  kOk = 0,
+  kNoPerson,            // the blob is not a detected person
+  kImplausibleHeight,   // H outside [min_height_m, max_height_m]
+  kNotCalibrationPose,  // arms not held out to both sides
+};
+std::string_view CalibrationStatusName(CalibrationStatus status);
+
+struct BodyCalibration {
+  CalibrationStatus status = CalibrationStatus::kNoPerson;
+  BodyShape shape;
+  ArticulatedPose pose;  // the calibration frame's fitted pose
+  BodyFitResult fit;     // of the final round
+  double height_m = 0, span_m = 0;
+  RadiusRatios radius_ratio{};  // radius / bone length of the 11 parts (cylinder_model.h)
+  // false: the shape came from the height alone (ProportionalBody), without the pose.
+  bool from_calibration_pose = true;
+};
+
+// Whether the blob shows the calibration pose, with its height and span (steps 1-2).
+struct CalibrationPoseTest {
+  CalibrationStatus status = CalibrationStatus::kNoPerson;
+  double height_m = 0, span_m = 0;
+  double centre_lateral_m = 0;  // legs' lateral position (left positive)
+  Eigen::Matrix3d sensor_from_body = Eigen::Matrix3d::Identity();  // columns forward, left, up
+  Eigen::Vector3d floor_origin = Eigen::Vector3d::Zero();          // floor point under the centroid
+};
+CalibrationPoseTest TestCalibrationPose(const PersonBlob& blob, const CalibrationOptions& options);
+
+// The arms-out pose of `shape` at the blob (step 4's start), or nullopt when the blob does not
+// show the calibration pose.
+std::optional<ArticulatedPose> CalibrationStartPose(const ArticulatedBody& body,
+                                                    const PersonBlob& blob,
+                                                    const CalibrationPoseTest& test);
+
+// The fallback for a subject who never shows the calibration pose: the shape from the
+// standing height alone (step 3 without the span), status kOk when the height is plausible.
+// The pose is left at its default; the caller places the body (SkeletonTracker does so as
+// when recovering from the silhouette).
+BodyCalibration ProportionalBody(const PersonBlob& blob, const CalibrationOptions& options = {});
+
+// Steps 1-4. subsample: data points every subsample-th grid point (>= 1).
+BodyCalibration CalibrateBody(const PersonBlob& blob, const PinholeCamera& camera, int subsample,
+                              const CalibrationOptions& options = {});
+
+}  // namespace reenact::capture

@@ -1,0 +1,296 @@
+#include "capture-client/tracker/person_detector.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+#include "common/error/check.h"
+
+namespace reenact::capture {
+
+void PersonDetectOptions::Check() const {
+  REENACT_CHECK(grid_step_px >= 1, "grid_step_px must be >= 1");
+  REENACT_CHECK(min_depth_m >= 0 && min_depth_m < max_depth_m,
+                "need 0 <= min_depth_m < max_depth_m");
+  REENACT_CHECK(floor_below_sensor_m >= 0, "floor_below_sensor_m must be >= 0");
+  REENACT_CHECK(max_height_m > 0, "max_height_m must be > 0");
+  REENACT_CHECK(min_top_m >= 0 && min_top_m < max_height_m, "need 0 <= min_top_m < max_height_m");
+  REENACT_CHECK(max_bottom_m >= 0, "max_bottom_m must be >= 0");
+  REENACT_CHECK(max_extent_m > 0, "max_extent_m must be > 0");
+  REENACT_CHECK(min_area_m2 >= 0 && min_area_m2 < max_area_m2,
+                "need 0 <= min_area_m2 < max_area_m2");
+  REENACT_CHECK(max_top_width_m > 0, "max_top_width_m must be > 0");
+  REENACT_CHECK(max_jump_m > 0, "max_jump_m must be > 0");
+  REENACT_CHECK(min_region_pixels >= 1, "min_region_pixels must be >= 1");
+  REENACT_CHECK(merge_step_m >= 0, "merge_step_m must be >= 0");
+  segment.Check();
+}
+
+std::string_view DetectStatusName(DetectStatus status) {
+  switch (status) {
+    case DetectStatus::kOk:
+      return "ok";
+    case DetectStatus::kNoDepth:
+      return "no_depth";
+    case DetectStatus::kNoFloor:
+      return "no_floor";
+    case DetectStatus::kNoPerson:
+      return "no_person";
+  }
+  return "unknown";
+}
+
+PersonDetector::PersonDetector(const PinholeCamera& camera, double depth_scale_m,
+                               const PersonDetectOptions& options)
+    : camera_(camera), depth_scale_m_(depth_scale_m), options_(options) {
+  REENACT_CHECK(camera.width > 0 && camera.height > 0 && camera.fx > 0 && camera.fy > 0,
+                "invalid camera");
+  REENACT_CHECK(depth_scale_m > 0 && std::isfinite(depth_scale_m), "depth_scale_m must be > 0");
+  options.Check();
+}
+
+std::optional<Plane3> PersonDetector::UpdateFloor(
+    const ImageDepthMm& depth, const Eigen::Vector3d& up,
+    const std::optional<Eigen::Isometry3d>& world_from_sensor, bool* refitted) {
+  *refitted = false;
+  const PersonSegmentOptions& so = options_.segment;
+  std::vector<Eigen::Vector3d> candidates;
+  const int stride = so.floor_sample_stride_px;
+  for (int y = 0; y < depth.height; y += stride)
+    for (int x = 0; x < depth.width; x += stride) {
+      const double z = depth.at(x, y) * depth_scale_m_;
+      if (z < options_.min_depth_m || z > options_.max_depth_m) continue;
+      const Eigen::Vector3d p = camera_.Unproject(Eigen::Vector2d(x, y), z);
+      if (up.dot(p) <= -options_.floor_below_sensor_m) candidates.push_back(p);
+    }
+  if (floor_) {
+    const Plane3 plane = floor_->in_world && world_from_sensor
+                             ? floor_->plane.Transformed(world_from_sensor->inverse())
+                             : floor_->plane;
+    if (floor_->in_world == world_from_sensor.has_value()) {
+      const FloorFit score = ScoreFloorPlane(plane, candidates, so);
+      if (score.inlier_ratio >= so.floor_keep_ratio * floor_->inlier_ratio) return plane;
+    }
+  }
+  const auto fit = FitFloorPlane(candidates, up, so);
+  if (!fit) {
+    floor_.reset();
+    return std::nullopt;
+  }
+  *refitted = true;
+  CachedFloor cached;
+  cached.in_world = world_from_sensor.has_value();
+  cached.plane = cached.in_world ? fit->plane.Transformed(*world_from_sensor) : fit->plane;
+  cached.inlier_ratio = fit->inlier_ratio;
+  floor_ = cached;
+  return fit->plane;
+}
+
+PersonBlob PersonDetector::Detect(const ImageDepthMm& depth,
+                                  const std::optional<Eigen::Isometry3d>& world_from_sensor,
+                                  const std::optional<Eigen::Vector3d>& world_up,
+                                  const std::optional<Eigen::Vector3d>& previous_centroid) {
+  REENACT_CHECK(
+      depth.width == camera_.width && depth.height == camera_.height && depth.channels == 1,
+      "depth image does not match the camera");
+  const int g = options_.grid_step_px;
+  const int gw = (depth.width + g - 1) / g, gh = (depth.height + g - 1) / g;
+  PersonBlob blob;
+  blob.grid_step_px = g;
+  blob.mask = ImageGray8(gw, gh, 1, 0);
+  blob.depth_m = Image<float>(gw, gh, 1, 0.f);
+  bool any = false;
+  for (int y = 0; y < gh; ++y)
+    for (int x = 0; x < gw; ++x) {
+      const double z = depth.at(x * g, y * g) * depth_scale_m_;
+      if (z >= options_.min_depth_m && z <= options_.max_depth_m && std::isfinite(z)) {
+        blob.depth_m.at(x, y) = static_cast<float>(z);
+        any = true;
+      }
+    }
+  if (!any) return blob;
+
+  Eigen::Vector3d up = -Eigen::Vector3d::UnitY();
+  if (world_from_sensor && world_up && world_up->allFinite() && world_up->norm() > 0)
+    up = (world_from_sensor->linear().transpose() * *world_up).normalized();
+  blob.floor_in_sensor = UpdateFloor(depth, up, world_from_sensor, &blob.floor_refitted);
+  if (!blob.floor_in_sensor) {
+    blob.status = DetectStatus::kNoFloor;
+    return blob;
+  }
+  const Plane3 floor = *blob.floor_in_sensor;
+  const PersonSegmentOptions& so = options_.segment;
+
+  // Candidates and their points.
+  const int n = gw * gh;
+  std::vector<Eigen::Vector3d> point(n);
+  std::vector<double> height(n, 0);
+  label_.assign(n, -1);  // -1: not a candidate, -2: candidate unlabelled, >= 0: region
+  for (int y = 0; y < gh; ++y)
+    for (int x = 0; x < gw; ++x) {
+      const double z = blob.depth_m.at(x, y);
+      if (z <= 0) continue;
+      const int i = y * gw + x;
+      point[i] = camera_.Unproject(Eigen::Vector2d(x * g, y * g), z);
+      height[i] = floor.SignedDistance(point[i]);
+      if (OnOrUnderFloor(floor, point[i], so.floor_clearance) || height[i] > options_.max_height_m)
+        continue;
+      label_[i] = -2;
+    }
+
+  // Horizontal axes of the floor frame.
+  const Eigen::Vector3d e1 = floor.normal.unitOrthogonal();
+  const Eigen::Vector3d e2 = floor.normal.cross(e1);
+  struct Region {
+    int pixels = 0;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double top = -1e9, bottom = 1e9, area = 0;
+    double min1 = 1e9, max1 = -1e9, min2 = 1e9, max2 = -1e9;
+    bool touches_bottom = false;
+  };
+  std::vector<Region> regions;
+  const double slope = g / camera_.fx;
+  for (int start = 0; start < n; ++start) {
+    if (label_[start] != -2) continue;
+    const int id = static_cast<int>(regions.size());
+    Region r;
+    queue_.assign(1, start);
+    label_[start] = id;
+    for (size_t q = 0; q < queue_.size(); ++q) {
+      const int i = queue_[q];
+      const int x = i % gw, y = i / gw;
+      const double z = point[i].z();
+      ++r.pixels;
+      r.sum += point[i];
+      r.top = std::max(r.top, height[i]);
+      r.bottom = std::min(r.bottom, height[i]);
+      const double a = point[i].dot(e1), b = point[i].dot(e2);
+      r.min1 = std::min(r.min1, a), r.max1 = std::max(r.max1, a);
+      r.min2 = std::min(r.min2, b), r.max2 = std::max(r.max2, b);
+      r.area += (slope * z) * (slope * z);
+      r.touches_bottom |= y >= gh - 2;
+      const double tol = so.depth_step.At(z) + slope * z;
+      const int nx[4] = {x - 1, x + 1, x, x};
+      const int ny[4] = {y, y, y - 1, y + 1};
+      for (int k = 0; k < 4; ++k) {
+        if (nx[k] < 0 || ny[k] < 0 || nx[k] >= gw || ny[k] >= gh) continue;
+        const int j = ny[k] * gw + nx[k];
+        if (label_[j] != -2 || std::abs(point[j].z() - z) > tol) continue;
+        label_[j] = id;
+        queue_.push_back(j);
+      }
+    }
+    regions.push_back(r);
+  }
+
+  // Merging across small depth gaps, smallest first, while the union stays human-sized.
+  struct Contact {
+    double gap;
+    int a, b;
+  };
+  std::vector<Contact> contacts;
+  {
+    std::unordered_map<uint64_t, double> gaps;
+    for (int y = 0; y < gh; ++y)
+      for (int x = 0; x < gw; ++x) {
+        const int i = y * gw + x;
+        if (label_[i] < 0) continue;
+        for (const int j : {x + 1 < gw ? i + 1 : -1, y + 1 < gh ? i + gw : -1}) {
+          if (j < 0 || label_[j] < 0 || label_[j] == label_[i]) continue;
+          const double gap = std::abs(point[i].z() - point[j].z());
+          if (gap > options_.merge_step_m) continue;
+          const uint64_t a = std::min(label_[i], label_[j]), b = std::max(label_[i], label_[j]);
+          auto [it, inserted] = gaps.emplace((a << 32) | b, gap);
+          if (!inserted) it->second = std::min(it->second, gap);
+        }
+      }
+    for (const auto& [key, gap] : gaps)
+      contacts.push_back({gap, static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu)});
+    std::sort(contacts.begin(), contacts.end(), [](const Contact& l, const Contact& r) {
+      return l.gap < r.gap || (l.gap == r.gap && (l.a < r.a || (l.a == r.a && l.b < r.b)));
+    });
+  }
+  std::vector<int> parent(regions.size());
+  for (size_t id = 0; id < regions.size(); ++id) parent[id] = static_cast<int>(id);
+  const auto find = [&](int id) {
+    while (parent[id] != id) id = parent[id] = parent[parent[id]];
+    return id;
+  };
+  for (const Contact& c : contacts) {
+    const int a = find(c.a), b = find(c.b);
+    if (a == b) continue;
+    Region u = regions[a];
+    const Region& r = regions[b];
+    u.pixels += r.pixels;
+    u.sum += r.sum;
+    u.top = std::max(u.top, r.top), u.bottom = std::min(u.bottom, r.bottom);
+    u.area += r.area;
+    u.min1 = std::min(u.min1, r.min1), u.max1 = std::max(u.max1, r.max1);
+    u.min2 = std::min(u.min2, r.min2), u.max2 = std::max(u.max2, r.max2);
+    u.touches_bottom |= r.touches_bottom;
+    if (std::hypot(u.max1 - u.min1, u.max2 - u.min2) > options_.max_extent_m ||
+        u.area > options_.max_area_m2)
+      continue;
+    regions[a] = u;
+    parent[b] = a;
+  }
+  for (int i = 0; i < n; ++i)
+    if (label_[i] >= 0) label_[i] = find(label_[i]);
+
+  // Width of each region's top 12 cm (the head, or raised hands).
+  std::vector<double> tmin1(regions.size(), 1e9), tmax1(regions.size(), -1e9),
+      tmin2(regions.size(), 1e9), tmax2(regions.size(), -1e9);
+  for (int i = 0; i < n; ++i) {
+    const int id = label_[i];
+    if (id < 0 || height[i] < regions[id].top - 0.12) continue;
+    const double a = point[i].dot(e1), b = point[i].dot(e2);
+    tmin1[id] = std::min(tmin1[id], a), tmax1[id] = std::max(tmax1[id], a);
+    tmin2[id] = std::min(tmin2[id], b), tmax2[id] = std::max(tmax2[id], b);
+  }
+
+  int best = -1;
+  double best_score = -std::numeric_limits<double>::infinity();
+  for (size_t id = 0; id < regions.size(); ++id) {
+    const Region& r = regions[id];
+    if (parent[id] != static_cast<int>(id) || r.pixels < options_.min_region_pixels) continue;
+    const double extent = std::hypot(r.max1 - r.min1, r.max2 - r.min2);
+    const double top_width = std::hypot(tmax1[id] - tmin1[id], tmax2[id] - tmin2[id]);
+    const bool plausible = r.top >= options_.min_top_m &&
+                           (r.bottom <= options_.max_bottom_m || r.touches_bottom) &&
+                           extent <= options_.max_extent_m && r.area >= options_.min_area_m2 &&
+                           r.area <= options_.max_area_m2 &&
+                           (previous_centroid || top_width <= options_.max_top_width_m);
+    if (!plausible) continue;
+    ++blob.plausible_regions;
+    const Eigen::Vector3d centroid = r.sum / r.pixels;
+    double score = r.area;
+    if (previous_centroid) {
+      const double jump = (centroid - *previous_centroid).norm();
+      if (jump > options_.max_jump_m) continue;
+      score = -jump;
+    }
+    if (score > best_score) best_score = score, best = static_cast<int>(id);
+  }
+  if (best < 0) {
+    blob.status = DetectStatus::kNoPerson;
+    return blob;
+  }
+  const Region& r = regions[best];
+  blob.status = DetectStatus::kOk;
+  blob.centroid = r.sum / r.pixels;
+  blob.top_height_m = r.top;
+  blob.bottom_height_m = r.bottom;
+  blob.area_m2 = r.area;
+  blob.points.reserve(r.pixels);
+  blob.pixels.reserve(r.pixels);
+  for (int i = 0; i < n; ++i) {
+    if (label_[i] != best) continue;
+    blob.mask.data[i] = 255;
+    blob.points.push_back(point[i]);
+    blob.pixels.emplace_back(i % gw, i / gw);
+  }
+  return blob;
+}
+
+}  // namespace reenact::capture

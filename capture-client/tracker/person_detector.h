@@ -1,0 +1,117 @@
+#pragma once
+// Person detection in depth without a skeleton (the tracker's first step):
+//  1. Floor: a RANSAC plane (segment/floor_plane.h) through the points at least
+//     floor_below_sensor_m below the sensor along the up direction (the world's up when the
+//     frame knows its pose, else the image's up, -y: a sensor held roughly level, tilted at
+//     most floor_max_tilt_deg). Cached (in the world frame when the pose is known, else in
+//     the sensor frame) and re-fitted when it stops fitting.
+//  2. Candidates on a grid of every grid_step_px-th pixel: readings in range, above the floor
+//     by more than its clearance and at most max_height_m above it.
+//  3. Connected regions (4-connected on the grid) joining neighbours whose depths differ by at
+//     most depth_step(z) + grid_step_px z / fx (the depth noise plus a 45-degree slope).
+//  4. Merging: regions that touch in the image with a depth gap of at most merge_step_m (an
+//     arm in front of the torso, a body split where a limb covers its side) are merged,
+//     smallest gap first, as long as the union stays within the size limits below (so a
+//     person never merges with a wall or a large object).
+//  5. The person: among the merged regions that are human-sized (top between min_top_m and
+//     max_height_m above the floor, bottom within max_bottom_m of it unless the region
+//     reaches the image's lower edge, horizontal extent at most max_extent_m, area between
+//     min_area_m2 and max_area_m2, and, when acquiring a person, at most max_top_width_m
+//     wide in its top 12 cm: a head, unlike a cabinet), the one nearest the previous
+//     person's centroid when given (within max_jump_m; the top-width test is then left out,
+//     as raised arms widen the top), else the largest.
+// Frames: points in the sensor frame (OpenCV axes, metres). Not thread-safe (floor cache).
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "capture-client/segment/floor_plane.h"
+#include "capture-client/segment/segment_options.h"
+#include "common/geometry/pinhole_camera.h"
+#include "common/image/image.h"
+
+namespace reenact::capture {
+
+struct PersonDetectOptions {
+  int grid_step_px = 2;      // >= 1
+  double min_depth_m = 0.4;  // readings outside [min, max] are holes; 0 <= min < max
+  double max_depth_m = 6.0;
+  double floor_below_sensor_m = 0.3;  // floor candidates lie this far below the sensor, >= 0
+  double max_height_m = 2.4;          // person points at most this high above the floor, > 0
+  double min_top_m = 0.5;             // a person's top at least this high, [0, max_height_m)
+  double max_bottom_m = 0.5;          // its lowest point at most this high (feet), >= 0
+  double max_extent_m = 2.6;          // horizontal extent at most, > 0
+  double min_area_m2 = 0.08;          // area facing the sensor, 0 <= min < max
+  double max_area_m2 = 3.0;
+  double max_top_width_m = 0.6;  // width of the top 12 cm at most, > 0
+  double max_jump_m = 0.8;       // centroid movement between frames when tracking, > 0
+  int min_region_pixels = 40;    // grid pixels, >= 1
+  double merge_step_m = 0.4;     // largest depth gap merged across, >= 0
+  // Floor fit and clearance, region-growing depth step: as the person segmenter's.
+  PersonSegmentOptions segment;
+
+  void Check() const;
+};
+
+enum class DetectStatus {
+  kOk = 0,
+  kNoDepth,   // no reading in range
+  kNoFloor,   // no floor plane found: nothing is detected (the floor separates the feet)
+  kNoPerson,  // no human-sized region
+};
+std::string_view DetectStatusName(DetectStatus status);
+
+struct PersonBlob {
+  DetectStatus status = DetectStatus::kNoDepth;
+  int grid_step_px = 1;
+  ImageGray8 mask;       // grid-sized (ceil(w / step) x ceil(h / step)), 255 = person
+  Image<float> depth_m;  // grid-sized readings in metres, 0 = hole (every pixel)
+  std::vector<Eigen::Vector3d> points;  // the person's grid points, sensor frame
+  std::vector<Eigen::Vector2i> pixels;  // their grid pixels
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  double top_height_m = 0, bottom_height_m = 0;  // above the floor
+  double area_m2 = 0;
+  int plausible_regions = 0;  // human-sized regions seen (2 or more: the nearest/largest won)
+  std::optional<Plane3> floor_in_sensor;  // normal pointing up
+  bool floor_refitted = false;
+};
+
+class PersonDetector {
+ public:
+  // Preconditions (CHECK): a valid camera, depth_scale_m > 0, valid options.
+  PersonDetector(const PinholeCamera& camera, double depth_scale_m,
+                 const PersonDetectOptions& options = {});
+
+  // depth: the camera's size (CHECK). world_from_sensor and world_up (unit, world frame):
+  // when the frame knows them. previous_centroid: the person's centroid in the sensor frame
+  // on the previous frame, when tracking.
+  PersonBlob Detect(const ImageDepthMm& depth,
+                    const std::optional<Eigen::Isometry3d>& world_from_sensor = std::nullopt,
+                    const std::optional<Eigen::Vector3d>& world_up = std::nullopt,
+                    const std::optional<Eigen::Vector3d>& previous_centroid = std::nullopt);
+
+  void ResetFloor() { floor_.reset(); }
+  const PersonDetectOptions& options() const { return options_; }
+  const PinholeCamera& camera() const { return camera_; }
+
+ private:
+  std::optional<Plane3> UpdateFloor(const ImageDepthMm& depth, const Eigen::Vector3d& up,
+                                    const std::optional<Eigen::Isometry3d>& world_from_sensor,
+                                    bool* refitted);
+
+  struct CachedFloor {
+    Plane3 plane;
+    bool in_world = false;
+    double inlier_ratio = 0;
+  };
+  PinholeCamera camera_;
+  double depth_scale_m_;
+  PersonDetectOptions options_;
+  std::optional<CachedFloor> floor_;
+  std::vector<int> label_, queue_;
+};
+
+}  // namespace reenact::capture

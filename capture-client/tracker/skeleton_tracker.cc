@@ -1,0 +1,272 @@
+#include "capture-client/tracker/skeleton_tracker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "common/error/check.h"
+
+namespace reenact::capture {
+namespace {
+
+using S = BodySegment;
+
+// The segments adjacent to each joint (Index(Joint) order), for its confidence.
+const std::array<std::array<S, 2>, kJointCount> kJointSegments = {{
+    {S::kHead, S::kHead},
+    {S::kHead, S::kChest},
+    {S::kChest, S::kLowerSpine},
+    {S::kPelvis, S::kLowerSpine},
+    {S::kChest, S::kLeftUpperArm},
+    {S::kLeftUpperArm, S::kLeftForearm},
+    {S::kLeftForearm, S::kLeftForearm},
+    {S::kChest, S::kRightUpperArm},
+    {S::kRightUpperArm, S::kRightForearm},
+    {S::kRightForearm, S::kRightForearm},
+    {S::kPelvis, S::kLeftThigh},
+    {S::kLeftThigh, S::kLeftShin},
+    {S::kLeftShin, S::kLeftShin},
+    {S::kPelvis, S::kRightThigh},
+    {S::kRightThigh, S::kRightShin},
+    {S::kRightShin, S::kRightShin},
+}};
+
+}  // namespace
+
+void SkeletonTrackerOptions::Check() const {
+  detect.Check();
+  fit.Check();
+  calibration.Check();
+  REENACT_CHECK(subsample >= 1, "subsample must be >= 1");
+  REENACT_CHECK(keep_near_model_m > 0, "keep_near_model_m must be > 0");
+  REENACT_CHECK(limb_search_trigger >= 0 && limb_search_trigger <= 1,
+                "limb_search_trigger in [0, 1]");
+  limb_search.Check();
+  REENACT_CHECK(good_inlier_share > 0 && good_inlier_share <= 1, "good_inlier_share in (0, 1]");
+  REENACT_CHECK(min_coverage > 0 && min_coverage <= 1, "min_coverage in (0, 1]");
+  REENACT_CHECK(lost_after_frames >= 1 && recovery_iterations >= 1,
+                "lost_after_frames and recovery_iterations must be >= 1");
+  REENACT_CHECK(start_without_calibration_after >= -1,
+                "start_without_calibration_after must be >= -1");
+  REENACT_CHECK(full_support_ratio > 0 && full_support_ratio <= 1, "full_support_ratio in (0, 1]");
+  REENACT_CHECK(min_confidence > 0 && min_confidence <= 1, "min_confidence in (0, 1]");
+}
+
+std::string_view TrackStateName(TrackState state) {
+  switch (state) {
+    case TrackState::kWaitingForCalibration:
+      return "waiting_for_calibration";
+    case TrackState::kTracking:
+      return "tracking";
+    case TrackState::kLost:
+      return "lost";
+  }
+  return "unknown";
+}
+
+SkeletonTracker::SkeletonTracker(const PinholeCamera& depth_camera, double depth_scale_m,
+                                 const SkeletonTrackerOptions& options)
+    : detector_(depth_camera, depth_scale_m, options.detect),
+      camera_(depth_camera),
+      options_(options) {
+  options.Check();
+}
+
+void SkeletonTracker::Reset() {
+  state_ = TrackState::kWaitingForCalibration;
+  calibration_.reset();
+  body_.reset();
+  has_previous_ = false;
+  bad_frames_ = 0;
+  uncalibrated_frames_ = 0;
+  detector_.ResetFloor();
+}
+
+bool SkeletonTracker::Good(const BodyFitResult& fit) const {
+  return fit.points > 0 && fit.inlier_share >= options_.good_inlier_share &&
+         fit.coverage >= options_.min_coverage;
+}
+
+Skeleton SkeletonTracker::WithConfidence(const BodyFitResult& fit, bool good) const {
+  Skeleton s = fit.posed.skeleton;
+  std::array<double, kBodySegmentCount> seg{};
+  for (int k = 0; k < kBodySegmentCount; ++k)
+    seg[k] = fit.expected_support[k] > 0
+                 ? fit.support[k] / (fit.expected_support[k] * options_.full_support_ratio)
+                 : 0.0;
+  for (int j = 0; j < kJointCount; ++j) {
+    const double c = std::max(seg[static_cast<int>(kJointSegments[j][0])],
+                              seg[static_cast<int>(kJointSegments[j][1])]);
+    double conf = std::clamp(c, options_.min_confidence, 1.0);
+    if (!good) conf = std::max(options_.min_confidence, 0.5 * conf);
+    s.confidence[j] = conf;
+  }
+  return s;
+}
+
+BodyFitResult SkeletonTracker::Refine(BodyFitResult fit, const BodyObservation& obs) const {
+  if (fit.outlier_share <= options_.limb_search_trigger) return fit;
+  ArticulatedPose pose = fit.pose;
+  if (SearchLimbs(*body_, obs, options_.fit, options_.limits, options_.limb_search, &pose) == 0)
+    return fit;
+  BodyFitResult again = FitBody(*body_, pose, obs, options_.fit, options_.limits);
+  return again.cost < fit.cost ? again : fit;
+}
+
+std::optional<BodyFitResult> SkeletonTracker::Recover(const PersonBlob& blob,
+                                                      const BodyObservation& obs) {
+  // From the calibration pose, when shown.
+  const CalibrationPoseTest test = TestCalibrationPose(blob, options_.calibration);
+  BodyFitOptions fit = options_.fit;
+  fit.iterations = options_.recovery_iterations;
+  if (auto start = CalibrationStartPose(*body_, blob, test)) {
+    BodyFitResult r = FitBody(*body_, *start, obs, fit, options_.limits);
+    if (Good(r)) return r;
+  }
+  if (!options_.recover_from_silhouette || !blob.floor_in_sensor) return std::nullopt;
+  // From the silhouette: upright hypotheses at the blob.
+  const Eigen::Vector3d up = blob.floor_in_sensor->normal;
+  Eigen::Vector3d toward = -blob.centroid;
+  toward -= toward.dot(up) * up;
+  if (toward.norm() < 1e-6) return std::nullopt;
+  toward.normalize();
+  const Eigen::Vector3d ground =
+      blob.centroid - blob.floor_in_sensor->SignedDistance(blob.centroid) * up;
+  const BodyShape& sh = body_->shape();
+  const double waist = sh.ankle_height + sh.shin + sh.thigh + sh.hip_drop;
+  std::vector<Eigen::Vector3d> headings;
+  for (int k = 0; k < 4; ++k) {
+    const double a = k * std::numbers::pi / 2;
+    headings.push_back(std::cos(a) * toward + std::sin(a) * up.cross(toward));
+  }
+  if (has_previous_) {
+    Eigen::Vector3d f = pose_.root_rotation.col(0);
+    f -= f.dot(up) * up;
+    if (f.norm() > 1e-6) headings.push_back(f.normalized());
+  }
+  std::optional<BodyFitResult> best;
+  for (const Eigen::Vector3d& forward : headings) {
+    ArticulatedPose start;
+    start.root_rotation.col(0) = forward;
+    start.root_rotation.col(1) = up.cross(forward);
+    start.root_rotation.col(2) = up;
+    start.root_translation = ground + waist * up;
+    BodyFitResult r = Refine(FitBody(*body_, start, obs, fit, options_.limits), obs);
+    if (!best || r.cost < best->cost) best = std::move(r);
+  }
+  if (best && Good(*best)) return best;
+  return std::nullopt;
+}
+
+TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
+                                        const std::optional<Eigen::Isometry3d>& world_from_sensor,
+                                        const std::optional<Eigen::Vector3d>& world_up) {
+  TrackFrameResult out;
+  const bool tracking = state_ == TrackState::kTracking;
+  const PersonBlob blob =
+      detector_.Detect(depth, world_from_sensor, world_up,
+                       tracking ? std::optional<Eigen::Vector3d>(centroid_) : std::nullopt);
+  out.detect = blob.status;
+  const auto lose_frame = [&] {
+    if (state_ == TrackState::kTracking && ++bad_frames_ >= options_.lost_after_frames)
+      state_ = TrackState::kLost;
+    out.state = state_;
+  };
+  if (blob.status != DetectStatus::kOk) {
+    lose_frame();
+    return out;
+  }
+
+  if (state_ == TrackState::kWaitingForCalibration) {
+    BodyCalibration c = CalibrateBody(blob, camera_, options_.subsample, options_.calibration);
+    if (c.status != CalibrationStatus::kOk || !Good(c.fit)) {
+      const int after = options_.start_without_calibration_after;
+      if (after < 0 || ++uncalibrated_frames_ < after) {
+        out.state = state_;
+        return out;
+      }
+      BodyCalibration p = ProportionalBody(blob, options_.calibration);
+      if (p.status != CalibrationStatus::kOk) {
+        out.state = state_;
+        return out;
+      }
+      body_.emplace(p.shape);
+      has_previous_ = false;
+      const BodyObservation obs =
+          MakeObservation(camera_, blob.grid_step_px, blob.mask, blob.depth_m, blob.points,
+                          blob.pixels, options_.subsample);
+      auto r = Recover(blob, obs);
+      if (!r) {
+        body_.reset();
+        out.state = state_;
+        return out;
+      }
+      p.pose = r->pose;
+      p.fit = *r;
+      c = std::move(p);
+    }
+    body_.emplace(c.shape);
+    pose_ = previous_pose_ = c.pose;
+    has_previous_ = false;
+    centroid_ = c.fit.inlier_centroid;
+    state_ = TrackState::kTracking;
+    bad_frames_ = 0;
+    out.calibrated = out.good_fit = true;
+    out.inlier_share = c.fit.inlier_share;
+    out.outlier_share = c.fit.outlier_share;
+    out.points = c.fit.points;
+    out.skeleton = WithConfidence(c.fit, true);
+    calibration_ = std::move(c);
+    out.state = state_;
+    return out;
+  }
+
+  BodyObservation obs = MakeObservation(camera_, blob.grid_step_px, blob.mask, blob.depth_m,
+                                        blob.points, blob.pixels, options_.subsample);
+  out.points = static_cast<int>(obs.points.size());
+  if (state_ == TrackState::kLost) {
+    auto r = Recover(blob, obs);
+    if (!r) {
+      out.state = state_;
+      return out;
+    }
+    state_ = TrackState::kTracking;
+    bad_frames_ = 0;
+    has_previous_ = false;
+    pose_ = previous_pose_ = r->pose;
+    centroid_ = r->inlier_centroid;
+    out.recovered = out.good_fit = true;
+    out.inlier_share = r->inlier_share;
+    out.outlier_share = r->outlier_share;
+    out.skeleton = WithConfidence(*r, true);
+    out.state = state_;
+    return out;
+  }
+
+  ArticulatedPose start = pose_;
+  if (has_previous_)
+    start.root_translation += pose_.root_translation - previous_pose_.root_translation;
+  KeepPointsNearBody(*body_, body_->Pose(start), options_.keep_near_model_m, &obs);
+  out.points = static_cast<int>(obs.points.size());
+  BodyFitResult fit = FitBody(*body_, start, obs, options_.fit, options_.limits);
+  fit = Refine(std::move(fit), obs);
+  out.inlier_share = fit.inlier_share;
+  out.outlier_share = fit.outlier_share;
+  out.coverage = fit.coverage;
+  out.good_fit = Good(fit);
+  centroid_ = fit.inlier_centroid;
+  if (!out.good_fit) {
+    lose_frame();
+    if (state_ == TrackState::kLost) return out;
+  } else {
+    bad_frames_ = 0;
+  }
+  previous_pose_ = pose_;
+  pose_ = fit.pose;
+  has_previous_ = true;
+  out.skeleton = WithConfidence(fit, out.good_fit);
+  out.state = state_;
+  return out;
+}
+
+}  // namespace reenact::capture

@@ -1,0 +1,133 @@
+#pragma once
+// Skeleton tracking from depth alone (issue 8): a skeleton source for sensors without NiTE.
+//
+// Per depth frame:
+//  - Waiting for calibration: detect the person (person_detector.h); when the blob shows the
+//    calibration pose (arms out sideways, facing the sensor), calibrate the body
+//    (body_calibration.h: height, arm span, 16-joint skeleton, radii); bone lengths are
+//    fixed from then on. A subject who has not shown the calibration pose after
+//    start_without_calibration_after frames with a detected person gets a body of average
+//    proportions for its standing height (ProportionalBody), placed as when recovering from
+//    the silhouette (below); its bone lengths are less exact.
+//  - Tracking: detect the person near its previous centroid (of the points the last fit
+//    explained, so that an object once merged with the person does not pull it), keep the points
+//    within keep_near_model_m of the predicted body (the previous pose, its root moved by the last
+//    frame's root motion: an object that touches the person is left out), fit the
+//    articulated body (body_fit.h) from the prediction.
+//    When many points are left unexplained, limbs are re-posed by a hypothesis search
+//    (limb_search.h) and fitted again. A fit is good when the data covers at least
+//    min_coverage of the model's silhouette (BodyFitResult::coverage: a model that slid off
+//    the person covers little; 0.4-0.65 is usual, the body hiding its own parts) and at
+//    least good_inlier_share of the points lie within inlier_m of the model's surface.
+//    Unexplained points alone (an object touching the person) do not make a fit bad. Bone
+//    lengths are fixed by construction and joint limits are enforced on every step, so
+//    neither can be violated; a failed detection or a bad fit counts as a bad frame, and
+//    lost_after_frames bad frames in a row mean the track is lost. Bad frames before that still
+//    give a skeleton, its confidences halved.
+//  - Lost: recovery each frame, either from the calibration pose (when the person shows it
+//    again) or from the silhouette: the calibrated body placed upright on the blob (the
+//    waist above the floor under the blob's centroid, arms and legs straight down) facing
+//    the sensor, away from it, to either side and at the last tracked heading, each fitted
+//    with recovery_iterations; the best fit is taken when it is good.
+// Per-joint confidence: each segment's inlier points over the points its capsules would show
+// if unoccluded (BodyFitResult::support / expected_support), divided by full_support_ratio
+// and clamped to [min_confidence, 1]; a joint takes the best of its adjacent segments.
+// Output skeletons are in the sensor frame (OpenCV axes, metres). Not thread-safe.
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <string_view>
+
+#include "capture-client/tracker/articulated_body.h"
+#include "capture-client/tracker/body_calibration.h"
+#include "capture-client/tracker/body_fit.h"
+#include "capture-client/tracker/limb_search.h"
+#include "capture-client/tracker/person_detector.h"
+#include "common/image/image.h"
+#include "common/skeleton/skeleton.h"
+
+namespace reenact::capture {
+
+struct SkeletonTrackerOptions {
+  PersonDetectOptions detect;
+  // Speed settings: data points every subsample-th detection grid point (>= 1; with the
+  // default grid of 2 px, subsample 2 takes every 4th pixel in x and y), and fit.iterations.
+  int subsample = 2;
+  BodyFitOptions fit;
+  CalibrationOptions calibration;
+  JointLimits limits;
+  // Limb re-posing (limb_search.h) when more than limb_search_trigger of the points lie
+  // beyond outlier_m of the fitted model ([0, 1]; 1 = never), then a second fit from there,
+  // kept when it costs less.
+  double limb_search_trigger = 0.005;
+  // While tracking, data points farther than this from the predicted body are not the
+  // person's (metres, > 0; larger than a limb moves in one frame).
+  double keep_near_model_m = 0.4;
+  LimbSearchOptions limb_search;
+  double good_inlier_share = 0.5;       // (0, 1]
+  double min_coverage = 0.3;            // (0, 1]
+  int lost_after_frames = 3;            // >= 1
+  int recovery_iterations = 12;         // >= 1
+  bool recover_from_silhouette = true;  // else only the calibration pose recovers
+  // Frames with a detected person, without the calibration pose, after which tracking starts
+  // with average proportions; -1 = never (wait for the calibration pose). >= -1.
+  int start_without_calibration_after = 15;
+  double full_support_ratio = 0.5;  // (0, 1]
+  double min_confidence = 0.05;     // (0, 1]: tracked joints are never reported missing
+
+  void Check() const;
+};
+
+enum class TrackState { kWaitingForCalibration = 0, kTracking, kLost };
+std::string_view TrackStateName(TrackState state);
+
+struct TrackFrameResult {
+  TrackState state = TrackState::kWaitingForCalibration;  // after this frame
+  DetectStatus detect = DetectStatus::kNoDepth;
+  std::optional<Skeleton> skeleton;  // sensor frame; none while waiting or lost
+  bool calibrated = false;           // calibrated on this frame
+  bool recovered = false;            // recovered from a loss on this frame
+  bool good_fit = false;
+  double inlier_share = 0, outlier_share = 0;
+  double coverage = 0;  // BodyFitResult::coverage
+  int points = 0;       // data points fitted
+};
+
+class SkeletonTracker {
+ public:
+  // Preconditions (CHECK): a valid camera, depth_scale_m > 0, valid options.
+  SkeletonTracker(const PinholeCamera& depth_camera, double depth_scale_m,
+                  const SkeletonTrackerOptions& options = {});
+
+  // One depth frame (the camera's size: CHECK). world_from_sensor and world_up: when known
+  // (they give the floor's up direction for a tilted or moving sensor).
+  TrackFrameResult Track(const ImageDepthMm& depth,
+                         const std::optional<Eigen::Isometry3d>& world_from_sensor = std::nullopt,
+                         const std::optional<Eigen::Vector3d>& world_up = std::nullopt);
+
+  TrackState state() const { return state_; }
+  // The calibration, once calibrated.
+  const std::optional<BodyCalibration>& calibration() const { return calibration_; }
+  // Forgets everything (a new subject).
+  void Reset();
+
+ private:
+  Skeleton WithConfidence(const BodyFitResult& fit, bool good) const;
+  bool Good(const BodyFitResult& fit) const;
+  BodyFitResult Refine(BodyFitResult fit, const BodyObservation& obs) const;
+  std::optional<BodyFitResult> Recover(const PersonBlob& blob, const BodyObservation& obs);
+
+  PersonDetector detector_;
+  PinholeCamera camera_;
+  SkeletonTrackerOptions options_;
+  TrackState state_ = TrackState::kWaitingForCalibration;
+  std::optional<BodyCalibration> calibration_;
+  std::optional<ArticulatedBody> body_;
+  ArticulatedPose pose_, previous_pose_;
+  bool has_previous_ = false;
+  Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
+  int bad_frames_ = 0;
+  int uncalibrated_frames_ = 0;
+};
+
+}  // namespace reenact::capture

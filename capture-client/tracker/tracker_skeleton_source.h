@@ -1,0 +1,51 @@
+#pragma once
+// The depth tracker as the recorder's skeleton source (record/clip_recorder.h,
+// RecordOptions::frame_skeletons): one SkeletonTracker per recording, fed every source
+// frame's depth in order, with the frame's sensor pose and the source's world up when the
+// source knows them. Counts what happened, for the recording's summary.
+
+#include <array>
+#include <memory>
+#include <string>
+
+#include "capture-client/record/clip_recorder.h"
+#include "capture-client/source/frame_source.h"
+#include "capture-client/tracker/skeleton_tracker.h"
+
+namespace reenact::capture {
+
+struct TrackerSourceStats {
+  int frames = 0;
+  int tracked = 0;             // frames with a skeleton
+  int calibration_frame = -1;  // source frame index of the (first) calibration, -1 = none
+  bool from_calibration_pose = false;
+  int losses = 0, recoveries = 0;
+  // Frames per detection outcome (Index: DetectStatus).
+  std::array<int, 4> detect{};
+
+  // One line for people: what was tracked, or why nothing was (and what to do).
+  std::string Describe() const;
+};
+
+class TrackerSkeletonSource {
+ public:
+  // Preconditions as SkeletonTracker's (the source's depth camera and scale).
+  TrackerSkeletonSource(const SensorInfo& info, const SkeletonTrackerOptions& options = {});
+
+  // The function for RecordOptions::frame_skeletons; it refers to this object, which must
+  // outlive the recording. Errors: a frame whose depth is not the depth camera's size
+  // ("corrupt").
+  FrameSkeletonSource Function();
+
+  const TrackerSourceStats& stats() const { return stats_; }
+  const SkeletonTracker& tracker() const { return *tracker_; }
+
+ private:
+  Expected<std::optional<Skeleton>> Track(int64_t index, const SensorFrame& frame);
+
+  SensorInfo info_;
+  std::unique_ptr<SkeletonTracker> tracker_;
+  TrackerSourceStats stats_;
+};
+
+}  // namespace reenact::capture

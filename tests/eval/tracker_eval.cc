@@ -1,0 +1,313 @@
+#include "tests/eval/tracker_eval.h"
+
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "capture-client/synthetic/synthetic_scene.h"
+#include "common/estimate/median.h"
+#include "tests/eval/quality_cli.h"
+
+namespace reenact::eval {
+namespace {
+
+double ThreadCpuMs() {
+  timespec t{};
+  ::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+// The near variant: the sensor moves forward along its axis until the subject's waist is
+// kNearDistanceM ahead, by at most kNearMaxShiftM.
+constexpr double kNearDistanceM = 1.8;
+constexpr double kNearMaxShiftM = 1.2;
+
+const char* kCases[] = {"back_facing", "arm_in_front", "fast_motion", "partly_outside"};
+
+// Which hard cases a ground-truth skeleton (sensor frame) shows; see the header.
+std::array<bool, 4> HardCases(const Skeleton& s, const Skeleton* previous, double dt,
+                              const PinholeCamera& camera) {
+  std::array<bool, 4> c{};
+  const Eigen::Vector3d left = s[Joint::kLeftShoulder] - s[Joint::kRightShoulder];
+  const Eigen::Vector3d up = s[Joint::kNeck] - s[Joint::kWaist];
+  const Eigen::Vector3d forward = left.cross(up);
+  const Eigen::Vector3d to_sensor = -s[Joint::kWaist];
+  if (forward.norm() > 1e-9 && to_sensor.norm() > 1e-9)
+    c[0] = forward.normalized().dot(to_sensor.normalized()) < std::cos(120 * M_PI / 180);
+  const auto project = [&](const Eigen::Vector3d& p) { return camera.Project(p, 0.05); };
+  const auto ls = project(s[Joint::kLeftShoulder]), rs = project(s[Joint::kRightShoulder]),
+             nk = project(s[Joint::kNeck]), wa = project(s[Joint::kWaist]);
+  if (ls && rs && nk && wa) {
+    const double x0 = std::min(ls->x(), rs->x()), x1 = std::max(ls->x(), rs->x());
+    const double y0 = std::min(nk->y(), wa->y()), y1 = std::max(nk->y(), wa->y());
+    for (Joint j : {Joint::kLeftHand, Joint::kRightHand, Joint::kLeftElbow, Joint::kRightElbow}) {
+      const auto p = project(s[j]);
+      if (p && p->x() >= x0 && p->x() <= x1 && p->y() >= y0 && p->y() <= y1 &&
+          s[j].z() <= s[Joint::kTorso].z() - 0.1)
+        c[1] = true;
+    }
+  }
+  if (previous)
+    for (int j = 0; j < kJointCount; ++j)
+      if ((s.position[j] - previous->position[j]).norm() / dt > 2.0) c[2] = true;
+  for (int j = 0; j < kJointCount; ++j) {
+    const auto p = project(s.position[j]);
+    if (!p || p->x() < 0 || p->y() < 0 || p->x() >= camera.width || p->y() >= camera.height)
+      c[3] = true;
+  }
+  return c;
+}
+
+double Mpjpe(const Skeleton& a, const Skeleton& b) {
+  double sum = 0;
+  for (int j = 0; j < kJointCount; ++j) sum += (a.position[j] - b.position[j]).norm();
+  return sum / kJointCount;
+}
+
+double Percentile90(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const size_t rank = static_cast<size_t>(std::ceil(0.9 * v.size()));
+  return v[std::max<size_t>(rank, 1) - 1];
+}
+
+struct CaseSum {
+  int frames = 0, tracked = 0;
+  double err = 0;
+};
+
+Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std::string& variant,
+                                int iterations, int subsample, const TrackerEvalOptions& o,
+                                std::map<std::string, CaseSum>* cases) {
+  capture::SkeletonTrackerOptions to = o.tracker;
+  to.fit.iterations = iterations;
+  to.subsample = subsample;
+  capture::SkeletonTracker tracker(scene.sensor_camera(), 0.001, to);
+  capture::SyntheticRenderOptions render;
+  render.depth_noise = o.depth_noise;
+  const int step = variant == "fast" ? 2 : 1;
+  const bool near = variant == "near";
+  const PinholeCamera& camera = scene.sensor_camera();
+
+  TrackerEvalRow row;
+  row.scenario = scene.scenario();
+  row.variant = variant;
+  row.iterations = iterations;
+  row.subsample = subsample;
+  std::vector<double> errors, ms, cpu;
+  std::optional<Skeleton> previous_truth;
+  capture::TrackState last = capture::TrackState::kWaitingForCalibration;
+  for (int f = 0; f < scene.frame_count(); f += step) {
+    if (o.max_frames > 0 && row.frames >= o.max_frames) break;
+    Eigen::Isometry3d world_from_sensor = scene.world_from_sensor(f);
+    if (near) {
+      const double z =
+          (world_from_sensor.inverse() * scene.skeleton_in_world(f)[Joint::kWaist]).z();
+      const double shift = std::clamp(z - kNearDistanceM, 0.0, kNearMaxShiftM);
+      world_from_sensor.translation() += shift * world_from_sensor.linear().col(2);
+    }
+    const capture::SyntheticView view = scene.Render(f, camera, world_from_sensor, render);
+    const Skeleton truth = scene.skeleton_in_world(f).Transformed(world_from_sensor.inverse());
+    const double cpu0 = ThreadCpuMs();
+    const auto t0 = std::chrono::steady_clock::now();
+    const capture::TrackFrameResult r =
+        tracker.Track(view.depth, world_from_sensor, scene.world_up());
+    const auto t1 = std::chrono::steady_clock::now();
+    cpu.push_back(ThreadCpuMs() - cpu0);
+    ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    ++row.frames;
+    if (r.calibrated && row.calibration_frame < 0) row.calibration_frame = f;
+    if (r.recovered) ++row.recoveries;
+    if (last == capture::TrackState::kTracking && r.state == capture::TrackState::kLost)
+      ++row.losses;
+    last = r.state;
+    double err = 0;
+    if (r.skeleton) {
+      ++row.tracked;
+      err = Mpjpe(*r.skeleton, truth);
+      errors.push_back(err);
+    }
+    const auto hard = HardCases(truth, previous_truth ? &*previous_truth : nullptr,
+                                step / scene.frame_rate_hz(), camera);
+    for (int k = 0; k < 4; ++k) {
+      if (!hard[k]) continue;
+      CaseSum& c = (*cases)[kCases[k]];
+      ++c.frames;
+      if (r.skeleton) ++c.tracked, c.err += err;
+    }
+    previous_truth = truth;
+  }
+  row.tracked_rate = row.frames ? static_cast<double>(row.tracked) / row.frames : 0;
+  double sum = 0;
+  for (double e : errors) sum += e;
+  row.mpjpe_cm = errors.empty() ? 0 : 100 * sum / errors.size();
+  row.p90_cm = 100 * Percentile90(errors);
+  row.ms_per_frame = ms.empty() ? 0 : Median(ms);
+  row.cpu_ms_per_frame = cpu.empty() ? 0 : Median(cpu);
+  return row;
+}
+
+}  // namespace
+
+Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& o) {
+  o.tracker.Check();
+  for (const std::string& v : o.variants)
+    if (v != "normal" && v != "fast" && v != "near")
+      return MakeError("usage", "unknown variant '" + v + "' (normal, fast or near)");
+  TrackerEvalRun run;
+  for (const std::string& name : o.scenarios) {
+    capture::SyntheticBodySpec body;
+    if (o.body_for_all || name.rfind("bvh:", 0) == 0) body.gltf_path = o.body_path;
+    auto scene = capture::SyntheticScene::Create(name, o.seed, body);
+    if (!scene.ok()) return scene.error();
+    for (const std::string& variant : o.variants)
+      for (size_t i = 0; i < o.iterations.size(); ++i)
+        for (size_t k = 0; k < o.subsample.size(); ++k) {
+          std::map<std::string, CaseSum> cases;
+          auto row = RunOne(*scene, variant, o.iterations[i], o.subsample[k], o, &cases);
+          if (!row.ok()) return row.error();
+          run.rows.push_back(*row);
+          for (const char* name_case : kCases) {
+            const auto it = cases.find(name_case);
+            if (it == cases.end()) continue;
+            TrackerCaseRow c;
+            c.scenario = name;
+            c.variant = variant;
+            c.hard_case = name_case;
+            c.iterations = o.iterations[i];
+            c.subsample = o.subsample[k];
+            c.frames = it->second.frames;
+            c.tracked = it->second.tracked;
+            c.tracked_rate = c.frames ? static_cast<double>(c.tracked) / c.frames : 0;
+            c.mpjpe_cm = c.tracked ? 100 * it->second.err / c.tracked : 0;
+            run.cases.push_back(c);
+          }
+        }
+  }
+  return run;
+}
+
+proto::Report TrackerReport(const TrackerEvalRun& run) {
+  proto::Report report;
+  report.command = "tracker";
+  for (const TrackerEvalRow& r : run.rows) {
+    proto::ReportRow row;
+    row.Add("scenario", r.scenario)
+        .Add("variant", r.variant)
+        .Add("iterations", static_cast<long long>(r.iterations))
+        .Add("subsample", static_cast<long long>(r.subsample))
+        .Add("n", static_cast<long long>(r.frames))
+        .Add("tracked_rate", r.tracked_rate)
+        .Add("mpjpe_cm", r.mpjpe_cm)
+        .Add("p90_cm", r.p90_cm)
+        .Add("calib_frame", static_cast<long long>(r.calibration_frame))
+        .Add("losses", static_cast<long long>(r.losses))
+        .Add("recoveries", static_cast<long long>(r.recoveries))
+        .Add("ms_per_frame", r.ms_per_frame)
+        .Add("cpu_ms_per_frame", r.cpu_ms_per_frame);
+    report.rows.push_back(std::move(row));
+  }
+  for (const TrackerCaseRow& c : run.cases) {
+    proto::ReportRow row;
+    row.table = "cases";
+    row.Add("scenario", c.scenario)
+        .Add("variant", c.variant)
+        .Add("iterations", static_cast<long long>(c.iterations))
+        .Add("subsample", static_cast<long long>(c.subsample))
+        .Add("case", c.hard_case)
+        .Add("n", static_cast<long long>(c.frames))
+        .Add("tracked_rate", c.tracked_rate)
+        .Add("mpjpe_cm", c.mpjpe_cm);
+    report.rows.push_back(std::move(row));
+  }
+  return report;
+}
+
+std::set<std::string> TrackerFlags() {
+  return {"scenario", "variants", "iterations", "subsample", "body", "noise", "json"};
+}
+
+namespace {
+
+Expected<std::vector<std::string>> ParseList(const std::string& flag, const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');) items.push_back(item);
+  if (text.empty() || text.back() == ',') items.emplace_back();
+  for (const std::string& item : items)
+    if (item.empty())
+      return MakeError("usage", "--" + flag + ": empty item in '" + text +
+                                    "' (give a value or a comma-separated list)");
+  return items;
+}
+
+Expected<std::vector<int>> ParseCounts(const std::string& flag, const std::string& text) {
+  auto items = ParseList(flag, text);
+  if (!items.ok()) return items.error();
+  std::vector<int> out;
+  for (const std::string& item : *items) {
+    size_t used = 0;
+    int value = 0;
+    try {
+      value = std::stoi(item, &used);
+    } catch (...) {
+      used = 0;
+    }
+    if (used != item.size() || value < 1 || value > 1000)
+      return MakeError("usage",
+                       "--" + flag + " takes whole numbers from 1 to 1000, got '" + item + "'");
+    out.push_back(value);
+  }
+  return out;
+}
+
+}  // namespace
+
+Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
+  TrackerCommand command;
+  TrackerEvalOptions& o = command.options;
+  if (auto text = cl.Get("scenario")) {
+    auto list = ParseList("scenario", *text);
+    if (!list.ok()) return list.error();
+    o.scenarios = *list;
+  }
+  if (auto text = cl.Get("variants")) {
+    auto list = ParseList("variants", *text);
+    if (!list.ok()) return list.error();
+    for (const std::string& v : *list)
+      if (v != "normal" && v != "fast" && v != "near")
+        return MakeError("usage", "--variants: unknown variant '" + v + "' (normal, fast, near)");
+    o.variants = *list;
+  }
+  if (auto text = cl.Get("iterations")) {
+    auto list = ParseCounts("iterations", *text);
+    if (!list.ok()) return list.error();
+    o.iterations = *list;
+  }
+  if (auto text = cl.Get("subsample")) {
+    auto list = ParseCounts("subsample", *text);
+    if (!list.ok()) return list.error();
+    o.subsample = *list;
+  }
+  if (auto body = cl.Get("body")) {
+    if (body->empty()) return MakeError("usage", "--body needs a .glb or .gltf path");
+    o.body_path = *body;
+    o.body_for_all = true;
+  }
+  if (auto noise = cl.Get("noise")) {
+    if (*noise != "on" && *noise != "off")
+      return MakeError("usage", "--noise must be on or off, got '" + *noise + "'");
+    o.depth_noise = *noise == "on";
+  }
+  if (auto path = cl.Get("json")) {
+    if (Status s = CheckWritableFile("json", *path); !s.ok()) return s.error();
+    command.json_path = *path;
+  }
+  return command;
+}
+
+}  // namespace reenact::eval

@@ -1,0 +1,51 @@
+// reenact-capture record --skeleton track: skeletons from our depth tracker (issue 8), on the
+// synthetic scene (which starts in the calibration pose) and on the real .oni recording of a
+// room without a person (a clear outcome, not a crash, and nothing left behind).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "tests/integration/process.h"
+
+namespace reenact {
+namespace {
+
+using testing::kCapture;
+using testing::RunProcess;
+using testing::TempDir;
+
+const std::string kOni =
+    std::string(REENACT_SOURCE_DIR) + "/../shared/data/oni/kinect-room-12f.oni";
+
+TEST(RecordTrack, SyntheticCalibrationPoseIsTrackedAndRecorded) {
+  TempDir tmp;
+  const std::string clip = tmp.path() + "/clip";
+  const auto record = RunProcess({kCapture, "record", "--source", "synthetic:turn-and-kick",
+                                  "--frames", "40", "--skeleton", "track", "--out", clip},
+                                 std::chrono::seconds(300));
+  ASSERT_EQ(record.exit_code, 0) << record.err;
+  EXPECT_NE(record.out.find("skeletons from the depth tracker"), std::string::npos) << record.out;
+  EXPECT_NE(record.out.find("tracker: 40 of 40 frames tracked; started at frame 0 from the "
+                            "calibration pose"),
+            std::string::npos)
+      << record.out;
+  EXPECT_NE(record.out.find("recorded 40 frames"), std::string::npos) << record.out;
+  const auto info = RunProcess({kCapture, "info", clip});
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+}
+
+TEST(RecordTrack, RoomWithoutAPersonFailsClearlyAndLeavesNothing) {
+  if (!std::filesystem::exists(kOni)) GTEST_SKIP() << kOni << " is absent (shared data)";
+  TempDir tmp;
+  const std::string clip = tmp.path() + "/clip";
+  const auto record = RunProcess(
+      {kCapture, "record", "--source", "oni:" + kOni, "--skeleton", "track", "--out", clip},
+      std::chrono::seconds(300));
+  EXPECT_NE(record.exit_code, 0);
+  EXPECT_NE(record.out.find("tracker: no skeleton in 12 frames"), std::string::npos) << record.out;
+  EXPECT_NE(record.err.find("has a skeleton"), std::string::npos) << record.err;
+  EXPECT_FALSE(std::filesystem::exists(clip));
+}
+
+}  // namespace
+}  // namespace reenact
