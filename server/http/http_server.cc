@@ -63,8 +63,8 @@ class HttpServer::Impl : public std::enable_shared_from_this<HttpServer::Impl> {
   void StopLoops();
 
   // One event loop per thread (concurrency hint 1): a connection lives on one loop, so its
-  // handlers need no strand and no thread hands a ready socket to another, which halved the
-  // futex and scheduler work per request on 2 cores (docs/server.md, Load).
+  // handlers need no strand and no thread hands a ready socket to another: a third more
+  // nearby queries per second on 2 cores (docs/decisions.md, Server throughput).
   std::vector<std::unique_ptr<asio::io_context>> loops;
   // Keeps loops 1..n-1 running while they have no connection; released once drained.
   std::vector<asio::executor_work_guard<asio::io_context::executor_type>> idle_guards;
