@@ -7,18 +7,10 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/error/check.h"
+#include "common/geometry/voxel_key.h"
 
 namespace reenact::capture {
 namespace {
-
-int64_t VoxelKey(int x, int y, int z) {
-  return (static_cast<int64_t>(x) & 0x1FFFFF) | ((static_cast<int64_t>(y) & 0x1FFFFF) << 21) |
-         ((static_cast<int64_t>(z) & 0x1FFFFF) << 42);
-}
-
-Eigen::Vector3i Cell(const Eigen::Vector3d& p, double size) {
-  return (p / size).array().floor().cast<int>();
-}
 
 int Hamming(const std::array<uint8_t, 32>& a, const uint8_t* b) {
   int d = 0;
@@ -69,25 +61,17 @@ BackgroundMapBuilder::BackgroundMapBuilder(proto::ClipMap seed, BackgroundMapOpt
     : BackgroundMapBuilder(options) {
   map_ = std::move(seed);
   for (size_t i = 0; i < map_.points.size(); ++i) {
-    grid_.emplace(CellKey(map_.points[i].position_in_world), i);
+    grid_.emplace(VoxelKey(VoxelCell(map_.points[i].position_in_world, options_.merge_radius_m)),
+                  i);
   }
 }
 
-int64_t BackgroundMapBuilder::CellKey(const Eigen::Vector3d& p) const {
-  return CellKey(Cell(p, options_.merge_radius_m));
-}
-
-int64_t BackgroundMapBuilder::CellKey(const Eigen::Vector3i& cell) const {
-  return VoxelKey(cell.x(), cell.y(), cell.z());
-}
-
 void BackgroundMapBuilder::AddPoint(const Eigen::Vector3d& p, const uint8_t* desc) {
-  const Eigen::Vector3i cell = Cell(p, options_.merge_radius_m);
+  const Eigen::Vector3i cell = VoxelCell(p, options_.merge_radius_m);
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dz = -1; dz <= 1; ++dz) {
-        auto [lo, hi] =
-            grid_.equal_range(CellKey(Eigen::Vector3i(cell + Eigen::Vector3i(dx, dy, dz))));
+        auto [lo, hi] = grid_.equal_range(VoxelKey(cell + Eigen::Vector3i(dx, dy, dz)));
         for (auto it = lo; it != hi; ++it) {
           proto::MapPoint& mp = map_.points[it->second];
           if ((mp.position_in_world - p).norm() <= options_.merge_radius_m &&
@@ -102,7 +86,7 @@ void BackgroundMapBuilder::AddPoint(const Eigen::Vector3d& p, const uint8_t* des
   mp.position_in_world = p;
   std::memcpy(mp.descriptor.data(), desc, 32);
   mp.observations = 1;
-  grid_.emplace(CellKey(cell), map_.points.size());
+  grid_.emplace(VoxelKey(cell), map_.points.size());
   map_.points.push_back(mp);
 }
 

@@ -51,9 +51,6 @@ class BackgroundMapBuilder {
 
  private:
   BackgroundMapOptions options_;
-  int64_t CellKey(const Eigen::Vector3d& p) const;
-  int64_t CellKey(const Eigen::Vector3i& cell) const;
-
   proto::ClipMap map_;
   std::unordered_multimap<int64_t, size_t> grid_;  // voxel key -> point index
 };

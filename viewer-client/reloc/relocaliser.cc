@@ -9,6 +9,7 @@
 
 #include "common/error/check.h"
 #include "common/estimate/ransac.h"
+#include "common/geometry/voxel_key.h"
 #include "vision/pose/pnp_estimator.h"
 
 namespace reenact::viewer {
@@ -22,20 +23,15 @@ constexpr int kNearestDescriptors = 6;
 // Per point, the index of the first point within radius_m of it (itself when none is).
 std::vector<int> GroupNearbyPoints(const proto::ClipMap& map, double radius_m) {
   std::unordered_multimap<int64_t, int> cells;
-  const auto key = [](const Eigen::Vector3i& c) {
-    return (static_cast<int64_t>(c.x()) & 0x1FFFFF) |
-           ((static_cast<int64_t>(c.y()) & 0x1FFFFF) << 21) |
-           ((static_cast<int64_t>(c.z()) & 0x1FFFFF) << 42);
-  };
   std::vector<int> group(map.points.size());
   for (size_t i = 0; i < map.points.size(); ++i) {
     const Eigen::Vector3d& p = map.points[i].position_in_world;
-    const Eigen::Vector3i cell = (p / radius_m).array().floor().cast<int>();
+    const Eigen::Vector3i cell = VoxelCell(p, radius_m);
     group[i] = static_cast<int>(i);
     for (int dx = -1; dx <= 1 && group[i] == static_cast<int>(i); ++dx)
       for (int dy = -1; dy <= 1 && group[i] == static_cast<int>(i); ++dy)
         for (int dz = -1; dz <= 1 && group[i] == static_cast<int>(i); ++dz) {
-          auto [lo, hi] = cells.equal_range(key(cell + Eigen::Vector3i(dx, dy, dz)));
+          auto [lo, hi] = cells.equal_range(VoxelKey(cell + Eigen::Vector3i(dx, dy, dz)));
           for (auto it = lo; it != hi; ++it) {
             if ((map.points[it->second].position_in_world - p).norm() <= radius_m) {
               group[i] = group[it->second];
@@ -43,7 +39,7 @@ std::vector<int> GroupNearbyPoints(const proto::ClipMap& map, double radius_m) {
             }
           }
         }
-    cells.emplace(key(cell), static_cast<int>(i));
+    cells.emplace(VoxelKey(cell), static_cast<int>(i));
   }
   return group;
 }
@@ -261,10 +257,10 @@ std::optional<Relocaliser::Estimate> Relocaliser::Relocalise(const vision::Frame
     reason = "no features in the frame (too dark, blurred or textureless)";
     return std::nullopt;
   }
-  // The two nearest map descriptors of every keypoint (OpenCV's vectorised Hamming search:
-  // the same rule as vision::MatchByDescriptor, several times faster on maps of thousands).
-  // The second best is the nearest descriptor of another place: a point the map holds in
-  // several views (capture-client/map/virtual_views.h) does not compete with itself.
+  // The nearest map descriptors of every keypoint (OpenCV's vectorised Hamming search,
+  // several times faster than vision::MatchByDescriptor on maps of thousands). The second
+  // best is the nearest descriptor of another place: a point the map holds in several views
+  // (capture-client/map/virtual_views.h) does not compete with itself.
   std::vector<std::vector<cv::DMatch>> nearest;
   matcher_->knnMatch(features.descriptors, map_descriptors_, nearest, kNearestDescriptors);
   std::vector<vision::FeatureMatch> matches;

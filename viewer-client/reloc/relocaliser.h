@@ -5,8 +5,8 @@
 //
 //  - relocalisation (no pose known, or the track was lost): the frame's ORB features
 //    (vision/features/orb_features.h) are matched against every map point by descriptor
-//    (Hamming distance <= reloc_max_distance, best < reloc_ratio * second best; OpenCV's
-//    brute-force matcher), the pose
+//    (Hamming distance <= reloc_max_distance, best < reloc_ratio * the best of another
+//    place, map points within 2 cm being one place; OpenCV's brute-force matcher), the pose
 //    comes from PnP in RANSAC (vision/pose/pnp_estimator.h; inlier when the reprojection
 //    error is <= ransac_max_error_px), is refined on the inliers
 //    (vision/pose/pose_refinement.h: Levenberg-Marquardt on the reprojection error with
