@@ -14,6 +14,7 @@ void CalibrationOptions::Check() const {
   REENACT_CHECK(min_span_ratio > 0 && max_offset_ratio > 0, "ratios must be > 0");
   REENACT_CHECK(refine_rounds >= 0, "refine_rounds must be >= 0");
   fit.Check();
+  shape.Check();
 }
 
 std::string_view CalibrationStatusName(CalibrationStatus status) {
@@ -181,6 +182,15 @@ BodyCalibration CalibrateBody(const PersonBlob& blob, const PinholeCamera& camer
     pose = c.fit.pose;
     if (round == options.refine_rounds) break;
     RefitRadii(body, c.fit.posed, obs.points, options.fit.outlier_m, &shape, prior);
+  }
+  if (options.fit_lengths) {
+    const ShapeFitResult sf = FitBodyShape(shape, pose, obs, h, options.fit, options.shape);
+    shape = sf.shape;
+    const ArticulatedBody body(shape);
+    BodyFitResult fit = FitBody(body, sf.pose, obs, options.fit);
+    RefitRadii(body, fit.posed, obs.points, options.fit.outlier_m, &shape, prior);
+    c.fit = FitBody(ArticulatedBody(shape), fit.pose, obs, options.fit);
+    pose = c.fit.pose;
   }
   c.shape = shape;
   c.pose = pose;

@@ -15,7 +15,12 @@
 //     torso's front surface; refined by the model fit (body_fit.h), then each capsule radius
 //     re-estimated as the median distance to its axis of the points nearest to it (middle
 //     70% of the axis), within [0.6, 1.5] of the proportional radius, and fitted again
-//     (refine_rounds times). Bone lengths are then fixed for tracking.
+//     (refine_rounds times).
+//  5. Lengths (fit_lengths): the free lengths of shape_fit.h (hips, spine, shoulder drop,
+//     legs, head; the arm chain stays at step 3's span estimate) fitted together with the
+//     pose, the proportional shape of step 3 as their prior and the standing height as a
+//     constraint (a subject's hips and legs are not at average fractions of its height);
+//     then the radii and the pose once more. Bone lengths are then fixed for tracking.
 
 #include <optional>
 #include <string>
@@ -24,6 +29,7 @@
 #include "capture-client/tracker/articulated_body.h"
 #include "capture-client/tracker/body_fit.h"
 #include "capture-client/tracker/person_detector.h"
+#include "capture-client/tracker/shape_fit.h"
 #include "common/model/cylinder_model.h"
 
 namespace reenact::capture {
@@ -35,6 +41,10 @@ struct CalibrationOptions {
   double max_offset_ratio = 0.08;  // span middle vs legs, / height, > 0
   int refine_rounds = 2;           // radius re-estimation rounds, >= 0
   BodyFitOptions fit{.iterations = 20};
+  // Step 5: fit the segment lengths with the pose (shape_fit.h), then the radii and the pose
+  // once more.
+  bool fit_lengths = true;
+  ShapeFitOptions shape;
 
   void Check() const;
 };
