@@ -21,13 +21,15 @@ constexpr const char* kUsage =
     "  reenact-viewer browse --server URL --near LAT,LON [--radius-m M] [--limit N] [--json]\n"
     "  reenact-viewer play CLIP_ID --server URL [--camera orbit] [--orbit-deg D]\n"
     "                      [--headless --out DIR] [--frames N] [--width W --height H]\n"
-    "                      [--cache DIR] [--bare] [--skeleton] [--masks] [--no-mp4]\n"
+    "                      [--cache DIR] [--bare] [--skeleton] [--masks] [--no-mp4] [--steady]\n"
     "  reenact-viewer play CLIP_ID --server URL --camera CAMERA [--calibration FILE]\n"
     "                      [--clip-clock time|frames] [--headless --out DIR] [--frames N]\n"
     "                      [--cache DIR] [--bare] [--skeleton] [--masks] [--no-mp4] [--no-status]\n"
+    "                      [--steady]\n"
     "      CAMERA: tum:DIR | video:FILE | live[:N] |\n"
     "              synthetic:SCENARIO[?frames=N&max_deg=D&subject=0|1&seed=S]\n"
-    "      without --headless: the AR view in a window (space, arrows, +/-, s, c, t, q)\n";
+    "      without --headless: the AR view in a window (space, arrows, +/-, s, c, t, q)\n"
+    "  --steady: steady motion (flagged skeletons interpolated across, joints One Euro filtered)\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-viewer", e); }
 
@@ -118,7 +120,8 @@ int PlayAr(const CommandLine& cl, const std::string& clip_id, const std::string&
   const proto::ApiClient api(server, "");
   auto clip = viewer::FetchClip(api, clip_id, cl.GetOr("cache", ".cache/reenact-viewer"));
   if (!clip.ok()) return Fail(clip.error());
-  const viewer::Reenactment reenactment(clip->manifest, std::move(clip->frames));
+  const viewer::Reenactment reenactment(clip->manifest, std::move(clip->frames),
+                                        {.steady_motion = cl.Has("steady"), .steady = {}});
   if (!headless) {
     viewer::ArWindowOptions window;
     window.max_frames = options.max_frames;
@@ -195,7 +198,8 @@ int Play(const CommandLine& cl) {
   std::printf("fetched clip %s: %lld frames, %.1f KB (%.1f KB downloaded)\n", clip_id.c_str(),
               static_cast<long long>(clip->manifest.frame_count), clip->bytes_total / 1024.0,
               clip->bytes_downloaded / 1024.0);
-  const viewer::Reenactment reenactment(clip->manifest, std::move(clip->frames));
+  const viewer::Reenactment reenactment(clip->manifest, std::move(clip->frames),
+                                        {.steady_motion = cl.Has("steady"), .steady = {}});
 
   if (!cl.Has("headless")) {
     const Status played = viewer::PlayInWindow(reenactment, options);
@@ -222,6 +226,6 @@ int main(int argc, char** argv) {
   const CommandLineSpec spec{
       {"server", "near", "radius-m", "limit", "camera", "orbit-deg", "out", "frames", "width",
        "height", "cache", "calibration", "clip-clock"},
-      {"json", "headless", "bare", "skeleton", "no-mp4", "masks", "no-status"}};
+      {"json", "headless", "bare", "skeleton", "no-mp4", "masks", "no-status", "steady"}};
   return RunTool("reenact-viewer", kUsage, spec, {{"browse", Browse}, {"play", Play}}, argc, argv);
 }

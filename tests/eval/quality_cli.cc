@@ -58,7 +58,8 @@ fs::path NearestExisting(const fs::path& path) {
 }  // namespace
 
 std::set<std::string> QualityFlags() {
-  return {"scenario", "body", "methods", "views", "step", "json", "markdown", "images", "image-pairs"};
+  return {"scenario", "body",     "methods", "views",       "step",
+          "json",     "markdown", "images",  "image-pairs", "skeleton-noise"};
 }
 
 Status CheckWritableFile(const std::string& flag, const std::string& path) {
@@ -125,6 +126,12 @@ Expected<QualityCommand> ParseQualityCommand(const CommandLine& cl) {
     return MakeError("usage", "--step must be a whole number >= 1 (every K-th frame), got " +
                                   std::to_string(*step));
   o.frame_step = static_cast<int>(*step);
+  const auto noise = cl.GetDouble("skeleton-noise", o.skeleton_noise_m);
+  if (!noise.ok()) return noise.error();
+  if (!std::isfinite(*noise) || *noise < 0 || *noise > 1)
+    return MakeError("usage", "--skeleton-noise must be metres in [0, 1] (e.g. 0.02), got " +
+                                  std::to_string(*noise));
+  o.skeleton_noise_m = *noise;
 
   if (auto text = cl.Get("image-pairs")) {
     if (!cl.Has("images"))

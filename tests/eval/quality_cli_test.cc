@@ -140,3 +140,24 @@ TEST(QualityRun, UnknownMethodIsRefusedBeforeTheRun) {
 
 }  // namespace
 }  // namespace reenact::eval
+
+namespace reenact::eval {
+namespace {
+
+TEST(QualityCli, ParsesSkeletonNoiseAndTheSteadyMethod) {
+  const auto r = Parse({"--methods", "thesis,steady", "--skeleton-noise", "0.01"});
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(r->options.methods, (std::vector<std::string>{"thesis", "steady"}));
+  EXPECT_DOUBLE_EQ(r->options.skeleton_noise_m, 0.01);
+}
+
+TEST(QualityCli, RefusesNegativeSkeletonNoise) {
+  ExpectError({"--skeleton-noise", "-0.01"}, "usage", "--skeleton-noise must be metres");
+}
+
+TEST(QualityCli, RefusesSkeletonNoiseThatIsNotANumber) {
+  ExpectError({"--skeleton-noise", "lots"}, "usage", "skeleton-noise");
+}
+
+}  // namespace
+}  // namespace reenact::eval

@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <optional>
+#include <random>
 
 #include "capture-client/record/clip_recorder.h"
 #include "capture-client/source/synthetic_source.h"
@@ -38,9 +40,24 @@ Expected<OpenedScenario> OpenScenario(const QualityOptions& options) {
 }
 
 // Records the source into a clip directory under `dir` and reads it back, as a viewer would.
+// With noise_m > 0 the recorder takes the scene's true skeletons with Gaussian jitter added
+// (QualityOptions::skeleton_noise_m) instead of the source's own.
 Expected<viewer::Reenactment> CaptureClip(capture::FrameSource& source,
+                                          const capture::SyntheticScene& scene, double noise_m,
                                           const std::filesystem::path& dir) {
-  auto recorded = capture::RecordClip(source, dir, {});
+  capture::RecordOptions options;
+  if (noise_m > 0)
+    options.skeletons = [&scene, noise_m](int64_t index, double) -> std::optional<Skeleton> {
+      if (index < 0 || index >= scene.frame_count()) return std::nullopt;
+      const int n = static_cast<int>(index);
+      Skeleton s = scene.skeleton_in_world(n).Transformed(scene.world_from_sensor(n).inverse());
+      std::mt19937_64 rng(0x5eed0000ULL + static_cast<uint64_t>(n));
+      std::normal_distribution<double> noise(0.0, noise_m);
+      for (Eigen::Vector3d& p : s.position)
+        p += Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+      return s;
+    };
+  auto recorded = capture::RecordClip(source, dir, options);
   if (!recorded.ok()) return recorded.error();
   auto clip = proto::ReadClipDirectory(dir);
   if (!clip.ok()) return clip.error();
@@ -73,6 +90,8 @@ std::string ImageName(const std::string& method, const ImagePair& pair) {
 
 void QualityOptions::Check() const {
   REENACT_CHECK(frame_step >= 1, "frame_step must be >= 1");
+  REENACT_CHECK(std::isfinite(skeleton_noise_m) && skeleton_noise_m >= 0,
+                "skeleton_noise_m must be finite and >= 0");
   REENACT_CHECK(width >= 16 && height >= 16, "output must be at least 16x16");
   REENACT_CHECK(!methods.empty() && !views_deg.empty(), "need a method and a view");
   for (double v : views_deg) REENACT_CHECK(std::isfinite(v), "view angles must be finite");
@@ -129,7 +148,7 @@ Expected<QualityHarness> QualityHarness::Create(const QualityOptions& options) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("reenact-eval-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
-  auto clip = CaptureClip(*opened->source, dir / "clip");
+  auto clip = CaptureClip(*opened->source, opened->scene, options.skeleton_noise_m, dir / "clip");
   std::filesystem::remove_all(dir);
   if (!clip.ok()) return clip.error();
   if (clip->frame_count() != opened->scene.frame_count())
@@ -240,11 +259,22 @@ Expected<QualityRun> RunQuality(const QualityOptions& options) {
     for (double view : options.views_deg) {
       QualityRow row{method->name, options.scenario, view};
       std::vector<double> ms;
-      int psnr_frames = 0;
+      int psnr_frames = 0, flicker_pairs = 0;
+      std::optional<FrameEvaluation> previous;
       for (int k = 0; k < run.clip_frames; k += options.frame_step) {
         auto e = harness->Evaluate(*method, view, k);
         if (!e.ok()) return e.error();
         ms.push_back(e->ms);
+        if (previous) {
+          const FlickerMeasure f = MeasureFlicker(
+              previous->rendered.color, previous->rendered.subject_mask, e->rendered.color,
+              e->rendered.subject_mask, previous->truth.color, previous->truth.mask,
+              e->truth.color, e->truth.mask);
+          row.reenacted_change += f.reenacted_change;
+          row.truth_change += f.truth_change;
+          row.error_change += f.error_change;
+          ++flicker_pairs;
+        }
         if (std::isfinite(e->comparison.psnr_db)) {
           row.psnr_db += e->comparison.psnr_db;
           ++psnr_frames;
@@ -256,7 +286,14 @@ Expected<QualityRun> RunQuality(const QualityOptions& options) {
         row.untextured_rate += e->provenance.UntexturedRate();
         row.reference_iou += e->reference_iou;
         ++row.n;
+        previous = std::move(e).value();
       }
+      if (flicker_pairs) {
+        row.reenacted_change /= flicker_pairs;
+        row.truth_change /= flicker_pairs;
+        row.error_change /= flicker_pairs;
+      }
+      row.flicker = row.reenacted_change - row.truth_change;
       if (psnr_frames) row.psnr_db /= psnr_frames;
       for (double* mean : {&row.ssim, &row.iou, &row.colour_mae, &row.wrong_part_rate,
                            &row.untextured_rate, &row.reference_iou})

@@ -8,6 +8,8 @@
 //   - wrong-part rate (part_provenance.h), with provenance from the CPU reference renderer
 //     (common/render/reference_renderer.h) drawing the same draw list; reference_iou, the
 //     silhouette IoU of the two renderings, shows they drew the same thing;
+//   - flicker (temporal_flicker.h) between consecutive evaluated frames k and k + frame_step
+//     at the same view, mean over those pairs;
 //   - milliseconds per rendered frame: draw-list build (selection + mapping) + GL draw +
 //     read-back, median over the frames.
 // Output frame k is compared with the scene's frame k; the source frame's part labels are
@@ -24,6 +26,7 @@
 #include "tests/eval/image_metrics.h"
 #include "tests/eval/part_provenance.h"
 #include "tests/eval/quality_methods.h"
+#include "tests/eval/temporal_flicker.h"
 #include "viewer-client/play/reenactment.h"
 #include "viewer-client/render/renderer.h"
 
@@ -47,6 +50,12 @@ struct QualityOptions {
   // of a skinned glTF model (e.g. ../shared/data/models/CesiumMan.glb; synthetic_scene.h).
   std::string body;
   std::vector<std::string> methods = {"thesis"};
+  // Tracker-like jitter on the recorded skeletons, metres (>= 0, finite; 0 = the scene's exact
+  // skeletons): every joint of every frame moved by independent Gaussian noise of this
+  // deviation per axis in the sensor frame, seeded by the frame index (repeatable). Skeletons
+  // it pushes past the bone-length check are flagged by the recorder as for real ones. The
+  // ground truth stays exact.
+  double skeleton_noise_m = 0;
   std::vector<double> views_deg = {0, 30, 60, 90, 135, 180};  // finite
   int frame_step = 10;  // >= 1: frames 0, step, 2 step, ... are compared
   int width = 640;      // output size, >= 16 each
@@ -74,6 +83,11 @@ struct QualityRow {
   double untextured_rate = 0;  // 0..1, share of subject pixels in flat colour
   double reference_iou = 0;    // GL vs reference silhouette (provenance check)
   double ms_per_frame = 0;     // median
+  // Means over the n - 1 pairs of consecutive evaluated frames (temporal_flicker.h), 0..255.
+  double reenacted_change = 0;
+  double truth_change = 0;
+  double flicker = 0;  // reenacted_change - truth_change
+  double error_change = 0;
 };
 
 struct QualityImage {

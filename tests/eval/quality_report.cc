@@ -62,7 +62,11 @@ proto::Report QualityReport(const QualityRun& run) {
                               .Add("wrong_part_rate", r.wrong_part_rate)
                               .Add("untextured_rate", r.untextured_rate)
                               .Add("reference_iou", r.reference_iou)
-                              .Add("ms_per_frame", r.ms_per_frame));
+                              .Add("ms_per_frame", r.ms_per_frame)
+                              .Add("reenacted_change", r.reenacted_change)
+                              .Add("truth_change", r.truth_change)
+                              .Add("flicker", r.flicker)
+                              .Add("error_change", r.error_change));
   return report;
 }
 
@@ -80,6 +84,12 @@ std::vector<std::string> QualityRules() {
       "their two silhouettes.",
       "ms_per_frame: median over the frames of draw-list build (selection + mapping) + GL draw "
       "+ read-back on the headless context.",
+      "flicker = reenacted_change - truth_change: at the same view, for each pair of "
+      "consecutive evaluated frames (k, k + step), the absolute RGB change (0-255, mean over "
+      "channels) from k to k + step of the reenactment, and of the ground truth, each subject "
+      "on black, summed over all pixels and divided by the area of the union of the two true "
+      "silhouettes; error_change the same for the error image (reenactment - truth), 0 only "
+      "when the reenactment changes exactly as the truth does; means over the pairs.",
   };
 }
 
@@ -93,6 +103,8 @@ std::string QualityCommandLine(const QualityOptions& options) {
   for (size_t i = 0; i < options.views_deg.size(); ++i)
     line << (i ? "," : "") << Number(options.views_deg[i]);
   line << " --step " << options.frame_step;
+  if (options.skeleton_noise_m > 0)
+    line << " --skeleton-noise " << Number(options.skeleton_noise_m);
   if (!options.image_dir.empty() && !options.image_pairs.empty()) {
     line << " --images " << options.image_dir << " --image-pairs ";
     for (size_t i = 0; i < options.image_pairs.size(); ++i)
@@ -127,7 +139,13 @@ std::string QualityMarkdown(const QualityOptions& options, const QualityRun& run
                                     std::filesystem::path(options.body).filename().string() + "`")
      << ": " << run.clip_frames
      << " frames recorded through the real capture pipeline (render, crop, JPEG/PNG, clip "
-        "directory) and read back; "
+        "directory) and read back"
+     << (options.skeleton_noise_m > 0
+             ? ", the recorded skeletons with Gaussian jitter of " +
+                   Fixed(options.skeleton_noise_m * 100, 1) +
+                   " cm per axis on every joint (the ground truth exact)"
+             : std::string())
+     << "; "
      << EveryKth(options.frame_step) << " is reenacted at " << options.width << "x"
      << options.height
      << " from viewpoints turned by view_deg about the subject's vertical axis from the "
@@ -138,14 +156,17 @@ std::string QualityMarkdown(const QualityOptions& options, const QualityRun& run
     if (auto m = FindQualityMethod(name); m.ok())
       md << "- `" << name << "`: " << (*m)->summary << ".\n";
   md << "\n| method | view_deg | n | psnr_db | ssim | iou | colour_mae | wrong_part_rate | "
-        "untextured_rate | reference_iou | ms_per_frame |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "untextured_rate | reference_iou | ms_per_frame | flicker | reenacted_change | "
+        "truth_change | error_change |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const QualityRow& r : run.rows)
     md << "| " << r.method << " | " << Number(r.view_deg) << " | " << r.n << " | "
        << Fixed(r.psnr_db, 2) << " | " << Fixed(r.ssim, 3) << " | " << Fixed(r.iou, 3) << " | "
        << Fixed(r.colour_mae, 1) << " | " << Fixed(r.wrong_part_rate, 3) << " | "
        << Fixed(r.untextured_rate, 3) << " | " << Fixed(r.reference_iou, 4) << " | "
-       << Fixed(r.ms_per_frame, 1) << " |\n";
+       << Fixed(r.ms_per_frame, 1) << " | " << Fixed(r.flicker, 2) << " | "
+       << Fixed(r.reenacted_change, 2) << " | " << Fixed(r.truth_change, 2) << " | "
+       << Fixed(r.error_change, 2) << " |\n";
   md << "\nHow the figures are made:\n\n";
   for (const std::string& rule : QualityRules()) md << "- " << rule << "\n";
 

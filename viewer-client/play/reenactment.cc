@@ -19,8 +19,10 @@ Eigen::Vector3f PartColor(int part) {
 
 }  // namespace
 
-Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFrame> frames)
-    : manifest_(std::move(manifest)), frames_(std::move(frames)) {
+Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFrame> frames,
+                         const ReenactmentOptions& options)
+    : options_(options), manifest_(std::move(manifest)), frames_(std::move(frames)) {
+  options_.Check();
   REENACT_CHECK(static_cast<int64_t>(frames_.size()) == manifest_.frame_count,
                 "frame count disagrees with the manifest");
   usable_ = std::make_unique<bool[]>(frames_.size());
@@ -33,6 +35,19 @@ Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFr
     if (n >= 0 && n < manifest_.frame_count) usable_[n] = false;
   texture_index_ =
       TextureIndex(skeletons_in_sensor_, std::span<const bool>(usable_.get(), frames_.size()));
+
+  std::vector<Skeleton> in_world;
+  std::vector<double> times;
+  std::unique_ptr<bool[]> flagged = std::make_unique<bool[]>(frames_.size());
+  for (size_t n = 0; n < frames_.size(); ++n) {
+    in_world.push_back(frames_[n].skeleton_in_world);
+    times.push_back(frames_[n].timestamp_s);
+    flagged[n] = false;
+  }
+  for (int64_t n : manifest_.flagged_skeleton_frames)
+    if (n >= 0 && n < manifest_.frame_count) flagged[n] = true;
+  steady_in_world_ = SteadySkeletonTrack(
+      in_world, times, std::span<const bool>(flagged.get(), frames_.size()), options_.steady);
 }
 
 Eigen::Vector3d Reenactment::SubjectCentre() const {
@@ -56,10 +71,19 @@ ReenactedFrame Reenactment::Build(int k, const PinholeCamera& viewer_camera,
                                   const Eigen::Isometry3d& viewer_from_world,
                                   const std::function<int(int)>& texture_for_frame) const {
   REENACT_CHECK(k >= 0 && k < frame_count(), "output frame out of range");
+  return BuildPosed(k, options_.steady_motion ? steady_in_world_[k] : frames_[k].skeleton_in_world,
+                    viewer_camera, viewer_from_world, texture_for_frame);
+}
+
+ReenactedFrame Reenactment::BuildPosed(int k, const Skeleton& skeleton_in_world,
+                                       const PinholeCamera& viewer_camera,
+                                       const Eigen::Isometry3d& viewer_from_world,
+                                       const std::function<int(int)>& texture_for_frame) const {
+  REENACT_CHECK(k >= 0 && k < frame_count(), "output frame out of range");
   ReenactedFrame out;
   out.clip_frame = k;
   out.draw.camera = viewer_camera;
-  const Skeleton viewer_skeleton = frames_[k].skeleton_in_world.Transformed(viewer_from_world);
+  const Skeleton viewer_skeleton = skeleton_in_world.Transformed(viewer_from_world);
 
   const auto ranked = texture_index_.Rank(viewer_skeleton);
   const int n_bar = ranked.empty() ? -1 : ranked.front().frame;
