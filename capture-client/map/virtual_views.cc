@@ -7,6 +7,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "capture-client/segment/pixel_rays.h"
 #include "common/error/check.h"
 
 namespace reenact::capture {
@@ -80,33 +81,43 @@ Eigen::Vector3f Bilinear(const ImageRgb8& image, double x, double y) {
   return sum;
 }
 
-}  // namespace
+// What every view of one keyframe shares: the input checked, the person mask grown, the
+// keyframe camera's pixel rays.
+struct KeyframeInputs {
+  cv::Mat person;  // CV_8UC1, non-zero = subject (grown); empty = no mask
+  PixelRays rays;
+};
 
-VirtualView RenderVirtualView(const ImageRgb8& color, const ImageDepthMm& depth,
-                              double depth_scale_m, const ImageGray8& person_mask,
-                              const PinholeCamera& camera,
-                              const Eigen::Isometry3d& world_from_sensor,
-                              const Eigen::Isometry3d& world_from_virtual,
-                              const VirtualViewOptions& options) {
+KeyframeInputs PrepareKeyframe(const ImageRgb8& color, const ImageDepthMm& depth,
+                               double depth_scale_m, const ImageGray8& person_mask,
+                               const PinholeCamera& camera, const VirtualViewOptions& options) {
   options.Check();
   REENACT_CHECK(color.channels == 3 && color.width == camera.width && color.height == camera.height,
                 "colour must be 3 channels of the camera's size");
   REENACT_CHECK(depth.width == camera.width && depth.height == camera.height,
                 "depth must be registered to the colour image");
   REENACT_CHECK(std::isfinite(depth_scale_m) && depth_scale_m > 0, "depth_scale_m must be > 0");
-  const int width = camera.width, height = camera.height;
-
-  cv::Mat person;
+  KeyframeInputs inputs{cv::Mat(), PixelRays(camera)};
   if (!person_mask.empty()) {
-    REENACT_CHECK(person_mask.width == width && person_mask.height == height,
+    REENACT_CHECK(person_mask.width == camera.width && person_mask.height == camera.height,
                   "person mask must have the camera's size");
-    person = cv::Mat(height, width, CV_8UC1, const_cast<uint8_t*>(person_mask.data.data())) > 127;
+    inputs.person = cv::Mat(camera.height, camera.width, CV_8UC1,
+                            const_cast<uint8_t*>(person_mask.data.data())) > 127;
     if (options.person_dilation_px > 0) {
       const int k = 2 * options.person_dilation_px + 1;
-      cv::dilate(person, person, cv::getStructuringElement(cv::MORPH_ELLIPSE, {k, k}));
+      cv::dilate(inputs.person, inputs.person,
+                 cv::getStructuringElement(cv::MORPH_ELLIPSE, {k, k}));
     }
   }
+  return inputs;
+}
 
+VirtualView Render(const ImageRgb8& color, const ImageDepthMm& depth, double depth_scale_m,
+                   const KeyframeInputs& inputs, const PinholeCamera& camera,
+                   const Eigen::Isometry3d& world_from_sensor,
+                   const Eigen::Isometry3d& world_from_virtual, const VirtualViewOptions& options) {
+  const int width = camera.width, height = camera.height;
+  const cv::Mat& person = inputs.person;
   VirtualView view;
   view.camera = Undistorted(camera);
   view.world_from_camera = world_from_virtual;
@@ -119,11 +130,8 @@ VirtualView RenderVirtualView(const ImageRgb8& color, const ImageDepthMm& depth,
     for (int u = 0; u < width; ++u) {
       const uint16_t raw = depth.at(u, v);
       if (raw == 0 || (!person.empty() && person.at<uint8_t>(v, u))) continue;
-      const Eigen::Vector3d ray =
-          camera.distortion.IsZero()
-              ? Eigen::Vector3d((u - camera.cx) / camera.fx, (v - camera.cy) / camera.fy, 1.0)
-              : camera.Undistort({u, v}).homogeneous().eval();
-      const Eigen::Vector3d p = rotation * (ray * (raw * depth_scale_m)) + translation;
+      const Eigen::Vector3d p =
+          rotation * inputs.rays.Point(u, v, raw * depth_scale_m) + translation;
       if (p.z() <= 0.05) continue;
       const int x = static_cast<int>(std::lround(view.camera.fx * p.x() / p.z() + view.camera.cx));
       const int y = static_cast<int>(std::lround(view.camera.fy * p.y() / p.z() + view.camera.cy));
@@ -159,20 +167,35 @@ VirtualView RenderVirtualView(const ImageRgb8& color, const ImageDepthMm& depth,
   return view;
 }
 
+}  // namespace
+
+VirtualView RenderVirtualView(const ImageRgb8& color, const ImageDepthMm& depth,
+                              double depth_scale_m, const ImageGray8& person_mask,
+                              const PinholeCamera& camera,
+                              const Eigen::Isometry3d& world_from_sensor,
+                              const Eigen::Isometry3d& world_from_virtual,
+                              const VirtualViewOptions& options) {
+  const KeyframeInputs inputs =
+      PrepareKeyframe(color, depth, depth_scale_m, person_mask, camera, options);
+  return Render(color, depth, depth_scale_m, inputs, camera, world_from_sensor, world_from_virtual,
+                options);
+}
+
 std::vector<VirtualMapPoint> VirtualViewFeatures(
     const ImageRgb8& color, const ImageDepthMm& depth, double depth_scale_m,
     const ImageGray8& person_mask, const PinholeCamera& camera,
     const Eigen::Isometry3d& world_from_sensor, const Eigen::Vector3d& pivot_in_world,
     const Eigen::Vector3d& up_in_world, const VirtualViewOptions& options) {
-  options.Check();
+  const KeyframeInputs inputs =
+      PrepareKeyframe(color, depth, depth_scale_m, person_mask, camera, options);
   vision::OrbFeatureOptions features = options.features;
   features.mask_dilation_px = options.hole_margin_px;
   std::vector<VirtualMapPoint> points;
   for (double yaw : options.yaw_deg) {
     const Eigen::Isometry3d world_from_virtual =
         TurnAboutVertical(world_from_sensor, pivot_in_world, up_in_world, yaw);
-    const VirtualView view = RenderVirtualView(color, depth, depth_scale_m, person_mask, camera,
-                                               world_from_sensor, world_from_virtual, options);
+    const VirtualView view = Render(color, depth, depth_scale_m, inputs, camera, world_from_sensor,
+                                    world_from_virtual, options);
     ImageGray8 holes(camera.width, camera.height, 1, 0);
     for (int y = 0; y < camera.height; ++y)
       for (int x = 0; x < camera.width; ++x) holes.at(x, y) = view.depth.at(x, y) == 0 ? 255 : 0;

@@ -43,7 +43,7 @@ std::string_view DetectStatusName(DetectStatus status) {
 
 PersonDetector::PersonDetector(const PinholeCamera& camera, double depth_scale_m,
                                const PersonDetectOptions& options)
-    : camera_(camera), depth_scale_m_(depth_scale_m), options_(options) {
+    : camera_(camera), rays_(camera), depth_scale_m_(depth_scale_m), options_(options) {
   REENACT_CHECK(camera.width > 0 && camera.height > 0 && camera.fx > 0 && camera.fy > 0,
                 "invalid camera");
   REENACT_CHECK(depth_scale_m > 0 && std::isfinite(depth_scale_m), "depth_scale_m must be > 0");
@@ -61,7 +61,7 @@ std::optional<Plane3> PersonDetector::UpdateFloor(
     for (int x = 0; x < depth.width; x += stride) {
       const double z = depth.at(x, y) * depth_scale_m_;
       if (z < options_.min_depth_m || z > options_.max_depth_m) continue;
-      const Eigen::Vector3d p = camera_.Unproject(Eigen::Vector2d(x, y), z);
+      const Eigen::Vector3d p = rays_.Point(x, y, z);
       if (up.dot(p) <= -options_.floor_below_sensor_m) candidates.push_back(p);
     }
   if (floor_) {
@@ -132,7 +132,7 @@ PersonBlob PersonDetector::Detect(const ImageDepthMm& depth,
       const double z = blob.depth_m.at(x, y);
       if (z <= 0) continue;
       const int i = y * gw + x;
-      point[i] = camera_.Unproject(Eigen::Vector2d(x * g, y * g), z);
+      point[i] = rays_.Point(x * g, y * g, z);
       height[i] = floor.SignedDistance(point[i]);
       if (OnOrUnderFloor(floor, point[i], so.floor_clearance) || height[i] > options_.max_height_m)
         continue;

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "capture-client/segment/floor_plane.h"
+#include "capture-client/segment/pixel_rays.h"
 #include "capture-client/segment/segment_options.h"
 #include "common/geometry/pinhole_camera.h"
 #include "common/image/image.h"
@@ -108,6 +109,7 @@ class PersonDetector {
     double inlier_ratio = 0;
   };
   PinholeCamera camera_;
+  PixelRays rays_;  // camera_'s, computed once
   double depth_scale_m_;
   PersonDetectOptions options_;
   std::optional<CachedFloor> floor_;
