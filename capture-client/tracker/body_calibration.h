@@ -66,6 +66,9 @@ struct BodyCalibration {
   RadiusRatios radius_ratio{};  // radius / bone length of the 11 parts (cylinder_model.h)
   // false: the shape came from the height alone (ProportionalBody), without the pose.
   bool from_calibration_pose = true;
+  // Tracked frames whose depth fitted the segment lengths on the fly (SkeletonTracker, for a
+  // body started without the calibration pose); 0: none.
+  int motion_frames = 0;
 };
 
 // Whether the blob shows the calibration pose, with its height and span (steps 1-2).

@@ -11,7 +11,6 @@ namespace reenact::capture {
 namespace {
 
 constexpr int kPose = ArticulatedBody::kParameterCount;
-constexpr int kParams = kPose + kShapeLengthCount;
 
 double* LengthField(BodyShape* s, ShapeLength k) {
   switch (k) {
@@ -41,16 +40,14 @@ double* LengthField(BodyShape* s, ShapeLength k) {
   return &s->shin;
 }
 
-// The residual vector of shape_fit.h at (shape, pose).
-class Residuals {
+// One frame's data and silhouette residuals of shape_fit.h at (shape, pose).
+class FrameResiduals {
  public:
-  Residuals(const BodyShape& prior, const BodyObservation& obs, double height_m,
-            const BodyFitOptions& fit, const ShapeFitOptions& o)
-      : prior_(prior), obs_(obs), height_m_(height_m), fit_(fit), o_(o) {
+  FrameResiduals(const BodyShape& prior, const BodyObservation& obs, const BodyFitOptions& fit)
+      : obs_(&obs), fit_(&fit) {
     const int caps = static_cast<int>(prior.Capsules().size());
     sil_w_ = std::sqrt(SilhouetteSampleWeight(obs, fit, caps));
-    size_ = static_cast<int>(obs.points.size()) + caps * std::max(0, fit.samples_per_capsule) + 1 +
-            kShapeLengthCount;
+    size_ = static_cast<int>(obs.points.size()) + caps * std::max(0, fit.samples_per_capsule);
   }
   int size() const { return size_; }
 
@@ -69,44 +66,47 @@ class Residuals {
     }
     Eigen::VectorXd r = Eigen::VectorXd::Zero(size_);
     int i = 0;
-    for (const Eigen::Vector3d& p : obs_.points) {
+    for (const Eigen::Vector3d& p : obs_->points) {
       double best = std::numeric_limits<double>::infinity();
       for (const Cap& c : caps) {
         const double t = c.len2 > 0 ? std::clamp((p - c.a).dot(c.ab) / c.len2, 0.0, 1.0) : 0.0;
         best = std::min(best, (p - c.a - t * c.ab).norm() - c.radius);
       }
-      if (best <= fit_.outlier_m)
-        r[i] = (best < 0 ? -1.0 : 1.0) * std::sqrt(2 * HuberCost(best, fit_.huber_m));
+      if (best <= fit_->outlier_m)
+        r[i] = (best < 0 ? -1.0 : 1.0) * std::sqrt(2 * HuberCost(best, fit_->huber_m));
       ++i;
     }
-    const int m = fit_.samples_per_capsule;
+    const int m = fit_->samples_per_capsule;
     for (const Cap& c : caps)
       for (int k = 0; k < m; ++k) {
         const double t = m == 1 ? 0.5 : static_cast<double>(k) / (m - 1);
         double e = 0;
         Eigen::Vector3d grad;
-        if (sil_w_ > 0 && SilhouetteResidual(obs_, c.a + t * c.ab, &e, &grad)) r[i] = sil_w_ * e;
+        if (sil_w_ > 0 && SilhouetteResidual(*obs_, c.a + t * c.ab, &e, &grad)) r[i] = sil_w_ * e;
         ++i;
       }
-    const double n = static_cast<double>(obs_.points.size());
-    r[i++] = std::sqrt(o_.height_weight * n) * (shape.StandingHeight() - height_m_);
-    const double w = std::sqrt(o_.prior_weight * n) * o_.prior_scale_m;
-    for (int k = 0; k < kShapeLengthCount; ++k) {
-      const double p = GetLength(prior_, static_cast<ShapeLength>(k));
-      r[i++] = p > 0 ? w * (GetLength(shape, static_cast<ShapeLength>(k)) - p) / p : 0.0;
-    }
     return r;
   }
 
  private:
-  const BodyShape& prior_;
-  const BodyObservation& obs_;
-  double height_m_;
-  const BodyFitOptions& fit_;
-  const ShapeFitOptions& o_;
+  const BodyObservation* obs_;
+  const BodyFitOptions* fit_;
   double sil_w_ = 0;
   int size_ = 0;
 };
+
+// The height and prior residuals (1 + kShapeLengthCount); n = data points of all frames.
+Eigen::VectorXd ShapeResiduals(const BodyShape& shape, const BodyShape& prior, double height_m,
+                               double n, const ShapeFitOptions& o) {
+  Eigen::VectorXd r(1 + kShapeLengthCount);
+  r[0] = std::sqrt(o.height_weight * n) * (shape.StandingHeight() - height_m);
+  const double w = std::sqrt(o.prior_weight * n) * o.prior_scale_m;
+  for (int k = 0; k < kShapeLengthCount; ++k) {
+    const double p = GetLength(prior, static_cast<ShapeLength>(k));
+    r[1 + k] = p > 0 ? w * (GetLength(shape, static_cast<ShapeLength>(k)) - p) / p : 0.0;
+  }
+  return r;
+}
 
 BodyShape Moved(const BodyShape& shape, const BodyShape& prior, const Eigen::VectorXd& d,
                 const ShapeFitOptions& o) {
@@ -114,8 +114,7 @@ BodyShape Moved(const BodyShape& shape, const BodyShape& prior, const Eigen::Vec
   for (int k = 0; k < kShapeLengthCount; ++k) {
     const ShapeLength l = static_cast<ShapeLength>(k);
     const double p = GetLength(prior, l);
-    SetLength(&s, l,
-              std::clamp(GetLength(shape, l) + d[kPose + k], o.min_ratio * p, o.max_ratio * p));
+    SetLength(&s, l, std::clamp(GetLength(shape, l) + d[k], o.min_ratio * p, o.max_ratio * p));
   }
   return s;
 }
@@ -140,57 +139,113 @@ ShapeFitResult FitBodyShape(const BodyShape& prior, const ArticulatedPose& start
                             const BodyObservation& obs, double height_m,
                             const BodyFitOptions& fit_options, const ShapeFitOptions& o,
                             const JointLimits& limits) {
+  const MultiFrameShapeFit m =
+      FitBodyShapeFrames(prior, {start}, {&obs}, height_m, fit_options, o, limits);
+  ShapeFitResult result;
+  result.shape = m.shape;
+  result.pose = m.poses[0];
+  result.initial_cost = m.initial_cost;
+  result.cost = m.cost;
+  result.iterations = m.iterations;
+  return result;
+}
+
+MultiFrameShapeFit FitBodyShapeFrames(const BodyShape& prior,
+                                      const std::vector<ArticulatedPose>& starts,
+                                      const std::vector<const BodyObservation*>& observations,
+                                      double height_m, const BodyFitOptions& fit_options,
+                                      const ShapeFitOptions& o, const JointLimits& limits) {
   o.Check();
   fit_options.Check();
   REENACT_CHECK(height_m > 0 && std::isfinite(height_m), "height must be positive");
-  ShapeFitResult result;
+  REENACT_CHECK(starts.size() == observations.size(), "one start pose per observation");
+  const int frames = static_cast<int>(starts.size());
+  MultiFrameShapeFit result;
   result.shape = prior;
-  result.pose = start;
-  ArticulatedBody::Clamp(&result.pose, limits);
-  if (obs.points.empty()) return result;
+  result.poses = starts;
+  for (ArticulatedPose& p : result.poses) ArticulatedBody::Clamp(&p, limits);
+  double n = 0;
+  for (const BodyObservation* obs : observations) {
+    REENACT_CHECK(obs != nullptr, "observation must not be null");
+    n += static_cast<double>(obs->points.size());
+  }
+  if (frames == 0 || n == 0) return result;
 
-  const Residuals residuals(prior, obs, height_m, fit_options, o);
-  Eigen::VectorXd r = residuals(result.shape, result.pose);
+  std::vector<FrameResiduals> frame_res;
+  std::vector<int> row0;
+  int rows = 0;
+  for (const BodyObservation* obs : observations) {
+    frame_res.emplace_back(prior, *obs, fit_options);
+    row0.push_back(rows);
+    rows += frame_res.back().size();
+  }
+  const int shape_row = rows;
+  rows += 1 + kShapeLengthCount;
+  const int params = frames * kPose + kShapeLengthCount;
+  const int len0 = frames * kPose;
+  const auto all_residuals = [&](const BodyShape& shape,
+                                 const std::vector<ArticulatedPose>& poses) {
+    Eigen::VectorXd r(rows);
+    for (int f = 0; f < frames; ++f)
+      r.segment(row0[f], frame_res[f].size()) = frame_res[f](shape, poses[f]);
+    r.tail(1 + kShapeLengthCount) = ShapeResiduals(shape, prior, height_m, n, o);
+    return r;
+  };
+  Eigen::VectorXd r = all_residuals(result.shape, result.poses);
   result.initial_cost = result.cost = 0.5 * r.squaredNorm();
   double lambda = o.initial_lambda;
-  Eigen::MatrixXd jac(residuals.size(), kParams);
+  Eigen::MatrixXd jac = Eigen::MatrixXd::Zero(rows, params);
   for (int it = 0; it < o.iterations; ++it) {
     ++result.iterations;
     const ArticulatedBody body(result.shape);
-    const PosedBody3 posed = body.Pose(result.pose);
-    for (int j = 0; j < kParams; ++j) {
-      Eigen::VectorXd d = Eigen::VectorXd::Zero(kParams);
-      const double h = j < kPose ? 1e-4 : 1e-3;
-      d[j] = h;
-      const Eigen::VectorXd dp = d.head(kPose), dm = -d.head(kPose);
+    std::vector<PosedBody3> posed;
+    for (const ArticulatedPose& p : result.poses) posed.push_back(body.Pose(p));
+    jac.setZero();
+    // Pose columns: only their own frame's rows.
+    for (int f = 0; f < frames; ++f)
+      for (int j = 0; j < kPose; ++j) {
+        const double h = 1e-4;
+        Eigen::VectorXd d = Eigen::VectorXd::Zero(kPose);
+        d[j] = h;
+        jac.block(row0[f], f * kPose + j, frame_res[f].size(), 1) =
+            (frame_res[f](result.shape, body.Step(result.poses[f], posed[f], d, limits)) -
+             frame_res[f](result.shape, body.Step(result.poses[f], posed[f], -d, limits))) /
+            (2 * h);
+      }
+    // Length columns: every frame's rows and the shape rows.
+    for (int k = 0; k < kShapeLengthCount; ++k) {
+      if (!o.free[k]) continue;
+      Eigen::VectorXd d = Eigen::VectorXd::Zero(kShapeLengthCount);
+      d[k] = 1e-3;
       const BodyShape sp = Moved(result.shape, prior, d, o);
       const BodyShape sm = Moved(result.shape, prior, -d, o);
-      const double step = j < kPose ? 2 * h
-                                    : GetLength(sp, static_cast<ShapeLength>(j - kPose)) -
-                                          GetLength(sm, static_cast<ShapeLength>(j - kPose));
-      if (std::abs(step) < 1e-12 || (j >= kPose && !o.free[j - kPose])) {
-        jac.col(j).setZero();
-        continue;
-      }
-      jac.col(j) = (residuals(sp, body.Step(result.pose, posed, dp, limits)) -
-                    residuals(sm, body.Step(result.pose, posed, dm, limits))) /
-                   step;
+      const double step =
+          GetLength(sp, static_cast<ShapeLength>(k)) - GetLength(sm, static_cast<ShapeLength>(k));
+      if (std::abs(step) < 1e-12) continue;
+      for (int f = 0; f < frames; ++f)
+        jac.block(row0[f], len0 + k, frame_res[f].size(), 1) =
+            (frame_res[f](sp, result.poses[f]) - frame_res[f](sm, result.poses[f])) / step;
+      jac.block(shape_row, len0 + k, 1 + kShapeLengthCount, 1) =
+          (ShapeResiduals(sp, prior, height_m, n, o) - ShapeResiduals(sm, prior, height_m, n, o)) /
+          step;
     }
     const Eigen::MatrixXd h = jac.transpose() * jac;
     const Eigen::VectorXd g = jac.transpose() * r;
     bool improved = false;
     while (lambda < 1e6) {
       Eigen::MatrixXd a = h;
-      a.diagonal() += lambda * h.diagonal() + Eigen::VectorXd::Constant(kParams, 1e-9);
+      a.diagonal() += lambda * h.diagonal() + Eigen::VectorXd::Constant(params, 1e-9);
       const Eigen::VectorXd d = a.ldlt().solve(-g);
       if (!d.allFinite()) break;
-      const BodyShape shape = Moved(result.shape, prior, d, o);
-      const ArticulatedPose pose = body.Step(result.pose, posed, d.head(kPose), limits);
-      const Eigen::VectorXd nr = residuals(shape, pose);
+      const BodyShape shape = Moved(result.shape, prior, d.tail(kShapeLengthCount), o);
+      std::vector<ArticulatedPose> poses(frames);
+      for (int f = 0; f < frames; ++f)
+        poses[f] = body.Step(result.poses[f], posed[f], d.segment(f * kPose, kPose), limits);
+      const Eigen::VectorXd nr = all_residuals(shape, poses);
       const double cost = 0.5 * nr.squaredNorm();
       if (cost < result.cost) {
         result.shape = shape;
-        result.pose = pose;
+        result.poses = std::move(poses);
         result.cost = cost;
         r = nr;
         lambda = std::max(lambda / 3, 1e-7);

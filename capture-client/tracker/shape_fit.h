@@ -20,6 +20,7 @@
 // Capsule radii are held (re-estimate them after, as CalibrateBody does).
 
 #include <array>
+#include <vector>
 
 #include "capture-client/tracker/articulated_body.h"
 #include "capture-client/tracker/body_fit.h"
@@ -76,5 +77,25 @@ ShapeFitResult FitBodyShape(const BodyShape& prior, const ArticulatedPose& start
                             const BodyObservation& observation, double height_m,
                             const BodyFitOptions& fit_options, const ShapeFitOptions& options,
                             const JointLimits& limits = {});
+
+// The same fit over several frames of one subject (on-the-fly calibration, without the
+// calibration pose): one set of lengths, one pose per frame (starts[f] for observations[f],
+// not null). The data and silhouette terms sum over the frames; the height and prior terms
+// count once, with N the data points of all frames, so that their weight against the data
+// is the one-frame fit's. Frames with varied poses (legs apart in a walk) show the lengths
+// that one straight-legged frame hides (the hips' height). Without frames or points, the
+// prior and the starts are returned.
+struct MultiFrameShapeFit {
+  BodyShape shape;
+  std::vector<ArticulatedPose> poses;
+  double initial_cost = 0, cost = 0;
+  int iterations = 0;
+};
+MultiFrameShapeFit FitBodyShapeFrames(const BodyShape& prior,
+                                      const std::vector<ArticulatedPose>& starts,
+                                      const std::vector<const BodyObservation*>& observations,
+                                      double height_m, const BodyFitOptions& fit_options,
+                                      const ShapeFitOptions& options,
+                                      const JointLimits& limits = {});
 
 }  // namespace reenact::capture

@@ -48,6 +48,16 @@ void SkeletonTrackerOptions::Check() const {
                 "lost_after_frames and recovery_iterations must be >= 1");
   REENACT_CHECK(start_without_calibration_after >= -1,
                 "start_without_calibration_after must be >= -1");
+  REENACT_CHECK(heading_candidates >= 1, "heading_candidates must be >= 1");
+  REENACT_CHECK(travel_window_frames >= 2 && travel_min_m > 0,
+                "travel_window_frames must be >= 2 and travel_min_m > 0");
+  REENACT_CHECK(travel_flip_cos >= -1 && travel_flip_cos <= 1, "travel_flip_cos in [-1, 1]");
+  REENACT_CHECK(flip_cost_tolerance >= 1, "flip_cost_tolerance must be >= 1");
+  REENACT_CHECK(heading_check_cooldown_frames >= 0, "heading_check_cooldown_frames must be >= 0");
+  REENACT_CHECK(
+      motion_calibration_frames >= 0 && motion_frame_spacing >= 1 && motion_min_leg_spread_rad >= 0,
+      "motion_calibration_frames >= 0, motion_frame_spacing >= 1, "
+      "motion_min_leg_spread_rad >= 0");
   REENACT_CHECK(full_support_ratio > 0 && full_support_ratio <= 1, "full_support_ratio in (0, 1]");
   REENACT_CHECK(min_confidence > 0 && min_confidence <= 1, "min_confidence in (0, 1]");
 }
@@ -68,7 +78,8 @@ SkeletonTracker::SkeletonTracker(const PinholeCamera& depth_camera, double depth
                                  const SkeletonTrackerOptions& options)
     : detector_(depth_camera, depth_scale_m, options.detect),
       camera_(depth_camera),
-      options_(options) {
+      options_(options),
+      travel_(std::max(2, options.travel_window_frames), std::max(1e-6, options.travel_min_m)) {
   options.Check();
 }
 
@@ -79,6 +90,11 @@ void SkeletonTracker::Reset() {
   has_previous_ = false;
   bad_frames_ = 0;
   uncalibrated_frames_ = 0;
+  travel_.Clear();
+  heading_cooldown_ = 0;
+  motion_obs_.clear();
+  motion_poses_.clear();
+  since_motion_frame_ = 0;
   detector_.ResetFloor();
 }
 
@@ -125,37 +141,91 @@ std::optional<BodyFitResult> SkeletonTracker::Recover(const PersonBlob& blob,
   }
   if (!options_.recover_from_silhouette || !blob.floor_in_sensor) return std::nullopt;
   // From the silhouette: upright hypotheses at the blob.
+  std::vector<Eigen::Vector3d> headings =
+      CandidateHeadings(blob.floor_in_sensor->normal, -blob.centroid, options_.heading_candidates);
+  if (headings.empty()) return std::nullopt;
+  if (has_previous_)
+    if (auto f = HorizontalForward(pose_, blob.floor_in_sensor->normal)) headings.push_back(*f);
+  std::optional<BodyFitResult> best = BestHeading(blob, obs, headings);
+  if (best && Good(*best)) return best;
+  return std::nullopt;
+}
+
+std::optional<BodyFitResult> SkeletonTracker::BestHeading(
+    const PersonBlob& blob, const BodyObservation& obs,
+    const std::vector<Eigen::Vector3d>& headings) const {
+  if (!blob.floor_in_sensor) return std::nullopt;
   const Eigen::Vector3d up = blob.floor_in_sensor->normal;
-  Eigen::Vector3d toward = -blob.centroid;
-  toward -= toward.dot(up) * up;
-  if (toward.norm() < 1e-6) return std::nullopt;
-  toward.normalize();
   const Eigen::Vector3d ground =
       blob.centroid - blob.floor_in_sensor->SignedDistance(blob.centroid) * up;
-  const BodyShape& sh = body_->shape();
-  const double waist = sh.ankle_height + sh.shin + sh.thigh + sh.hip_drop;
-  std::vector<Eigen::Vector3d> headings;
-  for (int k = 0; k < 4; ++k) {
-    const double a = k * std::numbers::pi / 2;
-    headings.push_back(std::cos(a) * toward + std::sin(a) * up.cross(toward));
-  }
-  if (has_previous_) {
-    Eigen::Vector3d f = pose_.root_rotation.col(0);
-    f -= f.dot(up) * up;
-    if (f.norm() > 1e-6) headings.push_back(f.normalized());
-  }
+  BodyFitOptions fit = options_.fit;
+  fit.iterations = options_.recovery_iterations;
   std::optional<BodyFitResult> best;
   for (const Eigen::Vector3d& forward : headings) {
-    ArticulatedPose start;
-    start.root_rotation.col(0) = forward;
-    start.root_rotation.col(1) = up.cross(forward);
-    start.root_rotation.col(2) = up;
-    start.root_translation = ground + waist * up;
+    const ArticulatedPose start = UprightPose(*body_, ground, up, forward);
     BodyFitResult r = Refine(FitBody(*body_, start, obs, fit, options_.limits), obs);
     if (!best || r.cost < best->cost) best = std::move(r);
   }
-  if (best && Good(*best)) return best;
-  return std::nullopt;
+  return best;
+}
+
+BodyFitResult SkeletonTracker::CheckTravelHeading(
+    BodyFitResult fit, const PersonBlob& blob, const BodyObservation& obs,
+    const std::optional<Eigen::Isometry3d>& world_from_sensor) {
+  if (!blob.floor_in_sensor) return fit;
+  const Eigen::Vector3d up = blob.floor_in_sensor->normal;
+  Eigen::Matrix3d world_from_sensor_r = Eigen::Matrix3d::Identity();
+  if (world_from_sensor) world_from_sensor_r = world_from_sensor->linear();
+  travel_.Add(world_from_sensor ? Eigen::Vector3d(*world_from_sensor * fit.pose.root_translation)
+                                : fit.pose.root_translation);
+  if (heading_cooldown_ > 0) {
+    --heading_cooldown_;
+    return fit;
+  }
+  const auto travel_world = travel_.Direction(world_from_sensor_r * up);
+  if (!travel_world) return fit;
+  const Eigen::Vector3d travel = world_from_sensor_r.transpose() * *travel_world;
+  const auto forward = HorizontalForward(fit.pose, up);
+  if (!forward || forward->dot(travel) >= options_.travel_flip_cos) return fit;
+  heading_cooldown_ = options_.heading_check_cooldown_frames;
+  BodyFitOptions fo = options_.fit;
+  fo.iterations = options_.recovery_iterations;
+  std::optional<BodyFitResult> best = BestHeading(blob, obs, {travel});
+  BodyFitResult turned =
+      Refine(FitBody(*body_, TurnedTo(fit.pose, up, travel), obs, fo, options_.limits), obs);
+  if (!best || turned.cost < best->cost) best = std::move(turned);
+  if (Good(*best) && best->cost <= options_.flip_cost_tolerance * fit.cost) return *best;
+  return fit;
+}
+
+void SkeletonTracker::CollectMotionFrame(const BodyFitResult& fit, const BodyObservation& obs) {
+  if (!calibration_ || calibration_->from_calibration_pose || calibration_->motion_frames > 0 ||
+      options_.motion_calibration_frames == 0)
+    return;
+  ++since_motion_frame_;
+  if (!motion_obs_.empty() && since_motion_frame_ < options_.motion_frame_spacing) return;
+  const auto& seg = fit.posed.sensor_from_segment;
+  const Eigen::Vector3d l = seg[static_cast<int>(S::kLeftThigh)].linear().col(2);
+  const Eigen::Vector3d r = seg[static_cast<int>(S::kRightThigh)].linear().col(2);
+  if (std::acos(std::clamp(l.dot(r), -1.0, 1.0)) < options_.motion_min_leg_spread_rad) return;
+  motion_obs_.push_back(obs);
+  motion_poses_.push_back(fit.pose);
+  since_motion_frame_ = 0;
+  if (static_cast<int>(motion_obs_.size()) < options_.motion_calibration_frames) return;
+  std::vector<const BodyObservation*> observations;
+  for (const BodyObservation& o : motion_obs_) observations.push_back(&o);
+  const MultiFrameShapeFit sf =
+      FitBodyShapeFrames(body_->shape(), motion_poses_, observations, calibration_->height_m,
+                         options_.fit, options_.calibration.shape, options_.limits);
+  body_.emplace(sf.shape);
+  calibration_->shape = sf.shape;
+  calibration_->motion_frames = static_cast<int>(motion_obs_.size());
+  const auto lengths = sf.shape.PartLengths();
+  const auto radii = sf.shape.PartRadii();
+  for (int i = 0; i < kBodyPartCount; ++i) calibration_->radius_ratio[i] = radii[i] / lengths[i];
+  pose_ = sf.poses.back();
+  motion_obs_.clear();
+  motion_poses_.clear();
 }
 
 TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
@@ -250,6 +320,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
   out.points = static_cast<int>(obs.points.size());
   BodyFitResult fit = FitBody(*body_, start, obs, options_.fit, options_.limits);
   fit = Refine(std::move(fit), obs);
+  if (Good(fit)) fit = CheckTravelHeading(std::move(fit), blob, obs, world_from_sensor);
   out.inlier_share = fit.inlier_share;
   out.outlier_share = fit.outlier_share;
   out.coverage = fit.coverage;
@@ -264,6 +335,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
   previous_pose_ = pose_;
   pose_ = fit.pose;
   has_previous_ = true;
+  if (out.good_fit) CollectMotionFrame(fit, obs);
   out.skeleton = WithConfidence(fit, out.good_fit);
   out.state = state_;
   return out;

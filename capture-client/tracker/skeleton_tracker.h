@@ -41,6 +41,7 @@
 #include "capture-client/tracker/articulated_body.h"
 #include "capture-client/tracker/body_calibration.h"
 #include "capture-client/tracker/body_fit.h"
+#include "capture-client/tracker/heading.h"
 #include "capture-client/tracker/limb_search.h"
 #include "capture-client/tracker/person_detector.h"
 #include "common/image/image.h"
@@ -72,6 +73,30 @@ struct SkeletonTrackerOptions {
   // Frames with a detected person, without the calibration pose, after which tracking starts
   // with average proportions; -1 = never (wait for the calibration pose). >= -1.
   int start_without_calibration_after = 15;
+  // Headings tried when starting without the calibration pose and when recovering from the
+  // silhouette (heading.h: evenly spaced about up, the first facing the sensor), >= 1.
+  int heading_candidates = 8;
+  // Front from the walking direction (heading.h's TravelDirection): over the last
+  // travel_window_frames (>= 2) tracked frames, a root that moved at least travel_min_m (> 0)
+  // across the floor travels that way; a fitted forward whose cosine to it is below
+  // travel_flip_cos ([-1, 1]) is re-fitted facing it, and the new fit kept when it is good
+  // and costs at most flip_cost_tolerance (>= 1) times the old one (front and back fit
+  // nearly alike, so the walk decides). At most once every heading_check_cooldown_frames
+  // (>= 0) frames.
+  int travel_window_frames = 20;
+  double travel_min_m = 0.3;
+  double travel_flip_cos = -0.3;
+  double flip_cost_tolerance = 1.3;
+  int heading_check_cooldown_frames = 10;
+  // On-the-fly calibration of a body started without the calibration pose: the segment
+  // lengths of shape_fit.h (its free lengths, priors and the standing height) fitted over
+  // motion_calibration_frames (>= 0; 0 = off) tracked frames with good fits, at least
+  // motion_frame_spacing (>= 1) frames apart, each with the thighs at least
+  // motion_min_leg_spread_rad (>= 0) apart (legs apart show the hips and leg lengths that a
+  // straight stance hides); then fixed.
+  int motion_calibration_frames = 4;
+  int motion_frame_spacing = 4;
+  double motion_min_leg_spread_rad = 0.3;
   double full_support_ratio = 0.5;  // (0, 1]
   double min_confidence = 0.05;     // (0, 1]: tracked joints are never reported missing
 
@@ -115,6 +140,13 @@ class SkeletonTracker {
   Skeleton WithConfidence(const BodyFitResult& fit, bool good) const;
   bool Good(const BodyFitResult& fit) const;
   BodyFitResult Refine(BodyFitResult fit, const BodyObservation& obs) const;
+  // The best-costing fit of upright starts facing each of `headings` on the blob's floor.
+  std::optional<BodyFitResult> BestHeading(const PersonBlob& blob, const BodyObservation& obs,
+                                           const std::vector<Eigen::Vector3d>& headings) const;
+  // The travel check of the options (front = direction of travel); returns the fit to keep.
+  BodyFitResult CheckTravelHeading(BodyFitResult fit, const PersonBlob& blob,
+                                   const BodyObservation& obs,
+                                   const std::optional<Eigen::Isometry3d>& world_from_sensor);
   std::optional<BodyFitResult> Recover(const PersonBlob& blob, const BodyObservation& obs);
 
   PersonDetector detector_;
@@ -128,6 +160,13 @@ class SkeletonTracker {
   Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
   int bad_frames_ = 0;
   int uncalibrated_frames_ = 0;
+  TravelDirection travel_;
+  // Frames collected for the on-the-fly calibration, and frames since the last one.
+  std::vector<BodyObservation> motion_obs_;
+  std::vector<ArticulatedPose> motion_poses_;
+  int since_motion_frame_ = 0;
+  void CollectMotionFrame(const BodyFitResult& fit, const BodyObservation& obs);
+  int heading_cooldown_ = 0;
 };
 
 }  // namespace reenact::capture
