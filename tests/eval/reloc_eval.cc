@@ -189,7 +189,7 @@ proto::Report RelocReport(const RelocEvalRun& run) {
 }
 
 std::set<std::string> RelocFlags() {
-  return {"scenario", "body", "frames", "max-deg", "record-frames", "json"};
+  return {"scenario", "body", "frames", "max-deg", "record-frames", "features", "json"};
 }
 
 Expected<RelocCommand> ParseRelocCommand(const CommandLine& cl) {
@@ -218,6 +218,12 @@ Expected<RelocCommand> ParseRelocCommand(const CommandLine& cl) {
     return MakeError("usage",
                      "--record-frames must be a whole number >= 1, got " + std::to_string(*record));
   o.record_frames = static_cast<int>(*record);
+  const auto features = cl.GetInt("features", o.relocaliser.features.num_features);
+  if (!features.ok()) return features.error();
+  if (*features < 100 || *features > 100'000)
+    return MakeError("usage", "--features must be a whole number in [100, 100000], got " +
+                                  std::to_string(*features));
+  o.relocaliser.features.num_features = static_cast<int>(*features);
   if (auto path = cl.Get("json")) {
     if (Status s = CheckWritableFile("json", *path); !s.ok()) return s.error();
     command.json_path = *path;
@@ -231,8 +237,9 @@ int RunRelocCommand(const CommandLine& cl) {
   const auto run = RunRelocEval(command->options);
   if (!run.ok()) return ReportFailure("reenact-eval", run.error());
   std::cout << "scenario " << command->options.scenario << ", map of " << run->map_points
-            << " points; a frame counts when within 2 cm and 1 degree of the truth (lost frames "
-               "count as outside)\n";
+            << " points, " << command->options.relocaliser.features.num_features
+            << " features per viewer frame; a frame counts when within 2 cm and 1 degree of the "
+               "truth (lost frames count as outside)\n";
   const Status printed = RelocReport(*run).Print(command->json_path);
   if (!printed.ok()) return ReportFailure("reenact-eval", printed.error());
   return 0;

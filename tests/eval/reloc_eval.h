@@ -3,7 +3,7 @@
 // ground truth.
 //
 //   reenact-eval reloc [--scenario S] [--body FILE.glb] [--frames N] [--max-deg D]
-//                      [--record-frames M] [--json FILE]
+//                      [--record-frames M] [--features F] [--json FILE]
 //
 // 1. The scenario is recorded through the real capture pipeline (RecordClip on its synthetic
 //    source, the first M frames, default all), and the clip's map is read back from the clip
@@ -17,6 +17,8 @@
 //    synthetic camera (viewer-client/camera/synthetic_camera_source.h). Viewer frame k shows the
 //    scene at frame k mod frame_count (the subject keeps moving), rendered with the sensor's
 //    intrinsics; its true viewer_from_world is known by construction.
+//    --features F: ORB features per viewer frame (RelocaliserOptions::features.num_features,
+//    default the relocaliser's).
 // 3. Two methods: "track" runs the relocaliser over the sequence (relocalise, then track frame
 //    to frame, relocalise when lost), "reloc" relocalises every frame from scratch.
 //
@@ -81,7 +83,8 @@ struct RelocCommand {
 std::set<std::string> RelocFlags();
 
 // Errors (code "usage", naming the flag): --frames not a whole number >= 2, --max-deg not a
-// number in (0, 90], --record-frames not a whole number >= 1, an empty --scenario; (code "io")
+// number in (0, 90], --record-frames not a whole number >= 1, --features not a whole number in
+// [100, 100000], an empty --scenario; (code "io")
 // a --json file that cannot be written.
 Expected<RelocCommand> ParseRelocCommand(const CommandLine& command_line);
 

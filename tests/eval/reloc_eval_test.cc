@@ -24,14 +24,17 @@ TEST(RelocCli, DefaultsAndFlags) {
   EXPECT_EQ(d->options.viewer_frames, 0);
   EXPECT_DOUBLE_EQ(d->options.max_deg, 45);
   EXPECT_EQ(d->options.record_frames, -1);
+  EXPECT_EQ(d->options.relocaliser.features.num_features,
+            viewer::RelocaliserOptions{}.features.num_features);
   const auto r = Parse({"--scenario", "walk-handheld", "--frames", "20", "--max-deg", "30",
-                        "--record-frames", "40", "--body", "procedural"});
+                        "--record-frames", "40", "--body", "procedural", "--features", "1500"});
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_EQ(r->options.scenario, "walk-handheld");
   EXPECT_EQ(r->options.viewer_frames, 20);
   EXPECT_DOUBLE_EQ(r->options.max_deg, 30);
   EXPECT_EQ(r->options.record_frames, 40);
   EXPECT_TRUE(r->options.body.empty());
+  EXPECT_EQ(r->options.relocaliser.features.num_features, 1500);
 }
 
 TEST(RelocCli, BadInputIsRefused) {
@@ -40,6 +43,8 @@ TEST(RelocCli, BadInputIsRefused) {
   ExpectUsage({"--max-deg", "0"}, "--max-deg");
   ExpectUsage({"--max-deg", "120"}, "--max-deg");
   ExpectUsage({"--record-frames", "0"}, "--record-frames");
+  ExpectUsage({"--features", "50"}, "--features");
+  ExpectUsage({"--features", "lots"}, "features");
   ExpectUsage({"--scenario", ""}, "--scenario");
   const auto json = Parse({"--json", "/nonexistent-folder/out.json"});
   ASSERT_FALSE(json.ok());
