@@ -10,6 +10,7 @@
 #include "viewer-client/play/ar_player.h"
 #include "viewer-client/play/ar_window_player.h"
 #include "viewer-client/play/headless_player.h"
+#include "viewer-client/play/texturing_presets.h"
 #include "viewer-client/play/window_player.h"
 
 namespace {
@@ -22,16 +23,31 @@ constexpr const char* kUsage =
     "  reenact-viewer play CLIP_ID --server URL [--camera orbit] [--orbit-deg D]\n"
     "                      [--headless --out DIR] [--frames N] [--width W --height H]\n"
     "                      [--cache DIR] [--bare] [--skeleton] [--masks] [--no-mp4] [--steady]\n"
+    "                      [--texturing NAME]\n"
     "  reenact-viewer play CLIP_ID --server URL --camera CAMERA [--calibration FILE]\n"
     "                      [--clip-clock time|frames] [--headless --out DIR] [--frames N]\n"
     "                      [--cache DIR] [--bare] [--skeleton] [--masks] [--no-mp4] [--no-status]\n"
-    "                      [--steady]\n"
+    "                      [--steady] [--texturing NAME]\n"
     "      CAMERA: tum:DIR | video:FILE | live[:N] |\n"
     "              synthetic:SCENARIO[?frames=N&max_deg=D&subject=0|1&seed=S]\n"
     "      without --headless: the AR view in a window (space, arrows, +/-, s, c, t, q)\n"
-    "  --steady: steady motion (flagged skeletons interpolated across, joints One Euro filtered)\n";
+    "  --steady: steady motion (flagged skeletons interpolated across, joints One Euro filtered)\n"
+    "  --texturing NAME: thesis (default) | per-part | occlusion | blend\n"
+    "      (viewer-client/play/texturing_presets.h; docs/quality.md compares them)\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-viewer", e); }
+
+// --steady and --texturing.
+Expected<viewer::ReenactmentOptions> ReenactmentOptionsFrom(const CommandLine& cl) {
+  viewer::ReenactmentOptions options;
+  options.steady_motion = cl.Has("steady");
+  if (auto name = cl.Get("texturing")) {
+    auto texturing = viewer::TexturingPreset(*name);
+    if (!texturing.ok()) return texturing.error();
+    options.texturing = *texturing;
+  }
+  return options;
+}
 
 int Browse(const CommandLine& cl) {
   const auto server = cl.Require("server");
@@ -80,6 +96,8 @@ int PlayAr(const CommandLine& cl, const std::string& clip_id, const std::string&
       return Fail(MakeError(
           "usage",
           std::string("--") + flag + " is for --camera orbit; AR output has the camera's size"));
+  const auto reenact_options = ReenactmentOptionsFrom(cl);
+  if (!reenact_options.ok()) return Fail(reenact_options.error());
   const bool headless = cl.Has("headless");
   if (!headless) {
     for (const char* flag : {"out", "masks", "no-mp4"})
@@ -120,8 +138,7 @@ int PlayAr(const CommandLine& cl, const std::string& clip_id, const std::string&
   const proto::ApiClient api(server, "");
   auto clip = viewer::FetchClip(api, clip_id, cl.GetOr("cache", ".cache/reenact-viewer"));
   if (!clip.ok()) return Fail(clip.error());
-  const viewer::Reenactment reenactment(clip->manifest, std::move(clip->frames),
-                                        {.steady_motion = cl.Has("steady"), .steady = {}});
+  const viewer::Reenactment reenactment(clip->manifest, std::move(clip->frames), *reenact_options);
   if (!headless) {
     viewer::ArWindowOptions window;
     window.max_frames = options.max_frames;
@@ -165,6 +182,8 @@ int Play(const CommandLine& cl) {
   if (!server.ok()) return Fail(server.error());
   const std::string camera = cl.GetOr("camera", "orbit");
   if (camera != "orbit") return PlayAr(cl, clip_id, *server, camera);
+  const auto reenact_options = ReenactmentOptionsFrom(cl);
+  if (!reenact_options.ok()) return Fail(reenact_options.error());
   viewer::HeadlessPlayOptions options;
   const auto frames = cl.GetInt("frames", -1);
   if (!frames.ok()) return Fail(frames.error());
@@ -198,8 +217,7 @@ int Play(const CommandLine& cl) {
   std::printf("fetched clip %s: %lld frames, %.1f KB (%.1f KB downloaded)\n", clip_id.c_str(),
               static_cast<long long>(clip->manifest.frame_count), clip->bytes_total / 1024.0,
               clip->bytes_downloaded / 1024.0);
-  const viewer::Reenactment reenactment(clip->manifest, std::move(clip->frames),
-                                        {.steady_motion = cl.Has("steady"), .steady = {}});
+  const viewer::Reenactment reenactment(clip->manifest, std::move(clip->frames), *reenact_options);
 
   if (!cl.Has("headless")) {
     const Status played = viewer::PlayInWindow(reenactment, options);
@@ -225,7 +243,7 @@ int Play(const CommandLine& cl) {
 int main(int argc, char** argv) {
   const CommandLineSpec spec{
       {"server", "near", "radius-m", "limit", "camera", "orbit-deg", "out", "frames", "width",
-       "height", "cache", "calibration", "clip-clock"},
+       "height", "cache", "calibration", "clip-clock", "texturing"},
       {"json", "headless", "bare", "skeleton", "no-mp4", "masks", "no-status", "steady"}};
   return RunTool("reenact-viewer", kUsage, spec, {{"browse", Browse}, {"play", Play}}, argc, argv);
 }

@@ -1,6 +1,7 @@
 #include "common/render/reference_renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -15,17 +16,7 @@ uint8_t ToByte(double value_0_255) {
   return static_cast<uint8_t>(std::lround(std::clamp(value_0_255, 0.0, 255.0)));
 }
 
-void CheckPart(const ReferencePart& part, size_t index) {
-  const std::string name = "reference part " + std::to_string(index) + ": ";
-  const Cylinder& c = part.cylinder;
-  REENACT_CHECK(c.a.allFinite() && c.b.allFinite() && std::isfinite(c.radius) && c.radius > 0,
-                name + "axis end points must be finite and the radius positive");
-  REENACT_CHECK(part.stored_from_viewer.allFinite(), name + "stored_from_viewer must be finite");
-  REENACT_CHECK(part.color.allFinite(), name + "colour must be finite");
-  REENACT_CHECK((part.crop != nullptr) == (part.stored_frame >= 0),
-                name + "stored_frame must be >= 0 exactly when a crop is given");
-  if (part.crop == nullptr) return;
-  const ReferenceCrop& crop = *part.crop;
+void CheckCrop(const ReferenceCrop& crop, const std::string& name) {
   REENACT_CHECK(!crop.color.empty() && crop.color.channels == 3,
                 name + "crop colour must be non-empty RGB");
   REENACT_CHECK(crop.mask.channels == 1 && crop.mask.width == crop.color.width &&
@@ -34,6 +25,33 @@ void CheckPart(const ReferencePart& part, size_t index) {
   crop.camera.Check();
   REENACT_CHECK(crop.camera.width == crop.color.width && crop.camera.height == crop.color.height,
                 name + "crop camera must have the crop's size");
+  const auto empty_or_crop_sized = [&crop](const auto& image) {
+    return image.empty() || (image.channels == 1 && image.width == crop.color.width &&
+                             image.height == crop.color.height);
+  };
+  REENACT_CHECK(empty_or_crop_sized(crop.part_labels),
+                name + "crop part labels must be empty or single-channel of the crop's size");
+  REENACT_CHECK(empty_or_crop_sized(crop.depth_m),
+                name + "crop depth must be empty or single-channel of the crop's size");
+}
+
+void CheckPart(const ReferencePart& part, size_t index) {
+  const std::string name = "reference part " + std::to_string(index) + ": ";
+  const Cylinder& c = part.cylinder;
+  REENACT_CHECK(c.a.allFinite() && c.b.allFinite() && std::isfinite(c.radius) && c.radius > 0,
+                name + "axis end points must be finite and the radius positive");
+  REENACT_CHECK(part.color.allFinite(), name + "colour must be finite");
+  REENACT_CHECK(part.candidates.size() <= static_cast<size_t>(kMaxTextureCandidates),
+                name + "at most " + std::to_string(kMaxTextureCandidates) + " texture candidates");
+  for (const ReferenceCandidate& candidate : part.candidates) {
+    REENACT_CHECK(candidate.crop != nullptr && candidate.stored_frame >= 0,
+                  name + "every candidate needs a crop and a stored_frame >= 0");
+    REENACT_CHECK(candidate.stored_from_viewer.allFinite(),
+                  name + "stored_from_viewer must be finite");
+    REENACT_CHECK(std::isfinite(candidate.weight) && candidate.weight >= 0,
+                  name + "candidate weights must be finite and >= 0");
+    CheckCrop(*candidate.crop, name);
+  }
 }
 
 // Bilinear sample of the premultiplied crop at pixel (u, v), clamped to the edge. Returns
@@ -61,6 +79,84 @@ bool SampleCrop(const ReferenceCrop& crop, double u, double v, Eigen::Vector3d& 
   return true;
 }
 
+struct CandidateSample {
+  bool usable = false;
+  bool visible = false;
+  Eigen::Vector3d rgb = Eigen::Vector3d::Zero();  // 0-255, where usable
+  double u = -1, v = -1;
+};
+
+// The rules of texturing.h for one candidate at the viewer-frame point p.
+CandidateSample SampleCandidate(const ReferenceCandidate& candidate, const Eigen::Vector3d& p,
+                                int part_label, bool test_visibility, double depth_tolerance_m) {
+  CandidateSample out;
+  const ReferenceCrop& crop = *candidate.crop;
+  const Eigen::Vector4d ps = candidate.stored_from_viewer * p.homogeneous();
+  const Eigen::Vector3d q = ps.head<3>() / ps.w();
+  if (!(q.z() > 0)) return out;
+  const double u = crop.camera.fx * q.x() / q.z() + crop.camera.cx;
+  const double v = crop.camera.fy * q.y() / q.z() + crop.camera.cy;
+  const int w = crop.color.width, h = crop.color.height;
+  if (!(u >= -0.5 && u <= w - 0.5 && v >= -0.5 && v <= h - 0.5)) return out;
+  if (!SampleCrop(crop, u, v, out.rgb)) return out;
+  out.usable = true;
+  out.u = u;
+  out.v = v;
+  if (!test_visibility || crop.part_labels.empty()) return out;
+  const int x = std::clamp(static_cast<int>(std::floor(u + 0.5)), 0, w - 1);
+  const int y = std::clamp(static_cast<int>(std::floor(v + 0.5)), 0, h - 1);
+  if (crop.part_labels.at(x, y) != part_label) return out;
+  if (!crop.depth_m.empty()) {
+    const double d = crop.depth_m.at(x, y);
+    if (d > 0 && !(std::abs(d - q.z()) <= depth_tolerance_m)) return out;
+  }
+  out.visible = true;
+  return out;
+}
+
+struct Contributor {
+  int candidate = -1;
+  double weight = 0;  // normalised
+};
+
+// The colour of a fragment under the part's mode; false where no candidate colours it.
+bool ShadeTextured(const ReferencePart& part, const Eigen::Vector3d& p, double depth_tolerance_m,
+                   Eigen::Vector3d& rgb, std::array<CandidateSample, kMaxTextureCandidates>& s,
+                   std::array<Contributor, kMaxTextureCandidates>& contributors, int& count) {
+  count = 0;
+  const bool visibility = part.texturing != TexturingMode::kFirst;
+  const int n = visibility ? static_cast<int>(part.candidates.size()) : 1;
+  const int label = PartLabel(part.part);
+  for (int i = 0; i < n; ++i)
+    s[i] = SampleCandidate(part.candidates[i], p, label, visibility, depth_tolerance_m);
+  if (part.texturing == TexturingMode::kBlendVisible) {
+    double total = 0;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int i = 0; i < n; ++i) {
+      if (!s[i].visible || !(part.candidates[i].weight > 0)) continue;
+      total += part.candidates[i].weight;
+      sum += part.candidates[i].weight * s[i].rgb;
+      contributors[count++] = {i, part.candidates[i].weight};
+    }
+    if (total > 0) {
+      rgb = sum / total;
+      for (int j = 0; j < count; ++j) contributors[j].weight /= total;
+      return true;
+    }
+    count = 0;
+  }
+  int chosen = -1;
+  for (int i = 0; i < n && chosen < 0; ++i)
+    if (s[i].visible) chosen = i;
+  for (int i = 0; i < n && chosen < 0; ++i)
+    if (s[i].usable) chosen = i;
+  if (chosen < 0) return false;
+  rgb = s[chosen].rgb;
+  contributors[0] = {chosen, 1.0};
+  count = 1;
+  return true;
+}
+
 }  // namespace
 
 void ReferenceRenderOptions::Check() const {
@@ -69,6 +165,8 @@ void ReferenceRenderOptions::Check() const {
   REENACT_CHECK(!std::isnan(far_z) && far_z > near_z, "far_z must exceed near_z");
   REENACT_CHECK(clear_color.minCoeff() >= 0 && clear_color.maxCoeff() <= 255,
                 "clear_color must lie in [0, 255]");
+  REENACT_CHECK(std::isfinite(depth_tolerance_m) && depth_tolerance_m >= 0,
+                "depth_tolerance_m must be finite and >= 0");
 }
 
 ReferenceRender RenderReference(const PinholeCamera& camera, std::span<const ReferencePart> parts,
@@ -92,8 +190,9 @@ ReferenceRender RenderReference(const PinholeCamera& camera, std::span<const Ref
     out.color.data[i] = static_cast<uint8_t>(options.clear_color[static_cast<int>(i % 3)]);
   out.mask = ImageGray8(w, h, 1, 0);
   out.part = Image<int32_t>(w, h, 1, -1);
-  out.source_frame = Image<int32_t>(w, h, 1, -1);
-  out.source_pixel = Image<float>(w, h, 2, -1.0f);
+  out.source_frame = Image<int32_t>(w, h, kMaxTextureCandidates, -1);
+  out.source_pixel = Image<float>(w, h, 2 * kMaxTextureCandidates, -1.0f);
+  out.source_weight = Image<float>(w, h, kMaxTextureCandidates, 0.0f);
 
   const CylinderMesh mesh = MakeUnitCylinderMesh(options.segments);
   std::vector<Eigen::Vector3i> triangles;
@@ -119,20 +218,12 @@ ReferenceRender RenderReference(const PinholeCamera& camera, std::span<const Ref
       const Eigen::Vector3d p((f.x - camera.cx) / camera.fx * z, (f.y - camera.cy) / camera.fy * z,
                               z);
       Eigen::Vector3d rgb;
-      float su = -1.0f, sv = -1.0f;
-      if (part.crop != nullptr) {
-        const ReferenceCrop& crop = *part.crop;
-        const Eigen::Vector4d ps = part.stored_from_viewer * p.homogeneous();
-        const Eigen::Vector3d q = ps.head<3>() / ps.w();
-        if (!(q.z() > 0)) return false;
-        const double u = crop.camera.fx * q.x() / q.z() + crop.camera.cx;
-        const double v = crop.camera.fy * q.y() / q.z() + crop.camera.cy;
-        if (!(u >= -0.5 && u <= crop.color.width - 0.5 && v >= -0.5 &&
-              v <= crop.color.height - 0.5))
+      std::array<CandidateSample, kMaxTextureCandidates> samples;
+      std::array<Contributor, kMaxTextureCandidates> contributors;
+      int count = 0;
+      if (!part.candidates.empty()) {
+        if (!ShadeTextured(part, p, options.depth_tolerance_m, rgb, samples, contributors, count))
           return false;
-        if (!SampleCrop(crop, u, v, rgb)) return false;
-        su = static_cast<float>(u);
-        sv = static_cast<float>(v);
       } else {
         const Eigen::Vector3d n =
             Eigen::Vector3d(f.attributes[0], f.attributes[1], f.attributes[2]).normalized();
@@ -142,9 +233,14 @@ ReferenceRender RenderReference(const PinholeCamera& camera, std::span<const Ref
       for (int k = 0; k < 3; ++k) out.color.at(f.x, f.y, k) = ToByte(rgb[k]);
       out.mask.at(f.x, f.y) = 255;
       out.part.at(f.x, f.y) = id;
-      out.source_frame.at(f.x, f.y) = part.crop != nullptr ? part.stored_frame : -1;
-      out.source_pixel.at(f.x, f.y, 0) = su;
-      out.source_pixel.at(f.x, f.y, 1) = sv;
+      for (int j = 0; j < kMaxTextureCandidates; ++j) {
+        const bool used = j < count;
+        const int i = used ? contributors[j].candidate : -1;
+        out.source_frame.at(f.x, f.y, j) = used ? part.candidates[i].stored_frame : -1;
+        out.source_pixel.at(f.x, f.y, 2 * j) = used ? static_cast<float>(samples[i].u) : -1.0f;
+        out.source_pixel.at(f.x, f.y, 2 * j + 1) = used ? static_cast<float>(samples[i].v) : -1.0f;
+        out.source_weight.at(f.x, f.y, j) = used ? static_cast<float>(contributors[j].weight) : 0;
+      }
       return true;
     });
   }

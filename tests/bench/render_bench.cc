@@ -38,9 +38,7 @@ RenderScene MakeScene() {
     part.cylinder = *cylinders[p];
     if (auto m =
             StoredFromViewerMapping(part.cylinder.a, part.cylinder.b, stored[ja], stored[jb])) {
-      part.stored_from_viewer = *m;
-      part.stored_frame = 0;
-      part.crop = &scene.crop;
+      part.candidates.push_back({&scene.crop, 0, *m, 1.0});
     }
     scene.parts.push_back(part);
   }
@@ -83,14 +81,14 @@ void AddRenderRows(proto::Report& report, const CoreBenchOptions& options) {
   viewer::FrameDraw draw;
   draw.camera = scene.camera;
   const int texture =
-      renderer->UploadTexture({scene.crop.color, scene.crop.mask, scene.crop.camera});
+      renderer->UploadTexture({scene.crop.color, scene.crop.mask, scene.crop.camera, {}, {}});
   for (const ReferencePart& p : scene.parts) {
     viewer::CylinderDraw c;
     c.a = p.cylinder.a;
     c.b = p.cylinder.b;
     c.radius = p.cylinder.radius;
-    c.stored_from_viewer = p.stored_from_viewer;
-    c.texture = p.crop != nullptr ? texture : -1;
+    for (const ReferenceCandidate& candidate : p.candidates)
+      c.candidates.push_back({texture, candidate.stored_from_viewer, candidate.weight});
     draw.cylinders.push_back(c);
   }
   renderer->Render(draw);  // warm-up: shader compilation and first allocation
@@ -103,6 +101,27 @@ void AddRenderRows(proto::Report& report, const CoreBenchOptions& options) {
                             .Add("n", parts)
                             .Add("ms_per_frame", gl_ms)
                             .Add("fps", 1000.0 / gl_ms));
+
+  // The same with three candidates per cylinder blended by visibility (the costliest mode:
+  // every candidate sampled with its part-label and depth texture).
+  const int labelled = renderer->UploadTexture(
+      {scene.crop.color, scene.crop.mask, scene.crop.camera,
+       ImageLabel8(scene.crop.color.width, scene.crop.color.height, 1, 1),
+       Image<float>(scene.crop.color.width, scene.crop.color.height, 1, 0.0f)});
+  for (viewer::CylinderDraw& c : draw.cylinders) {
+    c.texturing = TexturingMode::kBlendVisible;
+    if (c.candidates.empty()) continue;
+    const Eigen::Matrix4d m = c.candidates[0].stored_from_viewer;
+    c.candidates = {{labelled, m, 1.0}, {labelled, m, 2.0}, {labelled, m, 3.0}};
+  }
+  renderer->Render(draw);
+  const double blend_ms =
+      Median(TimeRepeated(options.repeats, 1, [&] { renderer->Render(draw); })) / 1000.0;
+  report.rows.push_back(proto::ReportRow{}
+                            .Add("op", "render_gl_headless_640x480_blend3")
+                            .Add("n", parts)
+                            .Add("ms_per_frame", blend_ms)
+                            .Add("fps", 1000.0 / blend_ms));
 }
 
 }  // namespace reenact::bench

@@ -262,15 +262,16 @@ int RunViewerBench(const CommandLine& cl) {
     for (const viewer::CylinderDraw& c : rf.draw.cylinders) {
       ReferencePart p;
       p.cylinder = Cylinder{c.a, c.b, c.radius};
-      p.stored_from_viewer = c.stored_from_viewer;
       p.color = c.color;
-      if (c.texture >= 0) {
-        if (!crops.count(c.texture)) {
-          viewer::StoredTexture st = reenactment.Texture(c.texture);
-          crops[c.texture] = ReferenceCrop{std::move(st.color), std::move(st.mask), st.camera};
+      p.part = c.part;
+      p.texturing = c.texturing;
+      for (const viewer::TextureCandidate& t : c.candidates) {
+        if (!crops.count(t.texture)) {
+          viewer::StoredTexture st = reenactment.Texture(t.texture);
+          crops[t.texture] = ReferenceCrop{std::move(st.color), std::move(st.mask), st.camera,
+                                           std::move(st.part_labels), std::move(st.depth_m)};
         }
-        p.stored_frame = c.texture;
-        p.crop = &crops[c.texture];
+        p.candidates.push_back({&crops[t.texture], t.texture, t.stored_from_viewer, t.weight});
       }
       parts.push_back(p);
     }

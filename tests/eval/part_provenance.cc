@@ -43,15 +43,22 @@ PartProvenance MeasurePartProvenance(const ReferenceRender& render,
     for (int x = 0; x < render.mask.width; ++x) {
       if (render.mask.at(x, y) == 0) continue;
       ++out.subject_pixels;
-      const int frame = render.source_frame.at(x, y);
-      if (frame < 0) continue;
+      if (render.source_frame.at(x, y, 0) < 0) continue;
       ++out.textured_pixels;
       const int part = render.part.at(x, y);
       REENACT_CHECK(part >= 0 && static_cast<size_t>(part) < cylinder_parts.size(),
                     "render part index " + std::to_string(part) + " has no body part");
-      out.wrong_pixels +=
-          WrongShareOfSample(source(frame), render.source_pixel.at(x, y, 0),
-                             render.source_pixel.at(x, y, 1), PartLabel(cylinder_parts[part]));
+      for (int j = 0; j < render.source_frame.channels; ++j) {
+        const int frame = render.source_frame.at(x, y, j);
+        if (frame < 0) continue;
+        const double share =
+            render.source_weight.empty() ? (j == 0 ? 1.0 : 0.0) : render.source_weight.at(x, y, j);
+        if (share <= 0) continue;
+        out.wrong_pixels +=
+            share * WrongShareOfSample(source(frame), render.source_pixel.at(x, y, 2 * j),
+                                       render.source_pixel.at(x, y, 2 * j + 1),
+                                       PartLabel(cylinder_parts[part]));
+      }
     }
   return out;
 }

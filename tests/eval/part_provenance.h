@@ -6,14 +6,19 @@
 //
 // Provenance is exact: it is read from the CPU reference renderer's per-pixel output for the
 // draw list (common/render/reference_renderer.h): `part` (index of the cylinder that drew the
-// pixel), `source_frame` and `source_pixel` (u, v) in the stored crop's pixels. The colour at
+// pixel) and, per contributing texture candidate j (one, or several where candidates are
+// blended), `source_frame` j, `source_pixel` (u_j, v_j) in that stored crop's pixels and
+// `source_weight` c_j (the contributor's normalised share of the colour, summing to 1; a
+// render without source_weight counts channel 0 with share 1). The colour at
 // (u, v) is the renderer's bilinear blend of the four nearest texels (clamped to the crop's
 // edge) whose crop mask is >= 128 (alpha 1), each weighted by its bilinear weight w_i and
 // normalised by their sum. A pixel's wrong share is
 //   sum_i w_i [label_i != PartLabel(part of the cylinder)] / sum_i w_i    (over alpha-1 texels)
 // with label_i the source frame's label image at the texel's sensor pixel (crop pixel +
 // the crop's offset; 0 = background outside the label image). A pixel sampled wholly from
-// the right part counts 0, wholly from another part 1, half-way across a border 1/2.
+// the right part counts 0, wholly from another part 1, half-way across a border 1/2. A
+// blended pixel's wrong share is the shares' weighted sum, sum_j c_j wrong_j: two equally
+// weighted candidates, one wholly right and one wholly wrong, count 1/2.
 //
 //   wrong_part_rate = sum of wrong shares / subject pixels
 //
@@ -54,8 +59,8 @@ double WrongShareOfSample(const SourceLabels& source, double u, double v, int ex
 
 // Sums the wrong shares over a reference render. cylinder_parts[i] is the body part of the
 // render's part index i; source(n) gives stored frame n's crop mask and labels (called once
-// per textured pixel; it may cache). Preconditions (CHECK): every part index in the render
-// is < cylinder_parts.size(); source(n) returns non-null images for every source frame.
+// per contributor of a textured pixel; it may cache). Preconditions (CHECK): every part index in
+// the render is < cylinder_parts.size(); source(n) returns non-null images for every source frame.
 PartProvenance MeasurePartProvenance(const ReferenceRender& render,
                                      std::span<const BodyPart> cylinder_parts,
                                      const std::function<SourceLabels(int frame)>& source);

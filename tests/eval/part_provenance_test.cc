@@ -82,8 +82,7 @@ TEST(PartProvenance, MeasuresAReferenceRenderPixelByPixel) {
 
   std::vector<ReferencePart> parts(2);
   parts[0].cylinder = Cylinder{{0.02, -0.01, 1.0}, {0.02, -0.01, 1.5}, 0.15};  // cap r = 30 px
-  parts[0].crop = &crop;
-  parts[0].stored_frame = 5;
+  parts[0].candidates.push_back({&crop, 5, Eigen::Matrix4d::Identity(), 1.0});
   parts[1].cylinder = Cylinder{{-0.35, -0.2, 1.0}, {-0.35, -0.2, 1.5}, 0.02};  // flat, apart
   const ReferenceRender render = RenderReference(camera, parts);
   const std::vector<BodyPart> cylinder_parts = {BodyPart::kLeftForearm, BodyPart::kHead};
@@ -115,6 +114,36 @@ TEST(PartProvenance, MeasuresAReferenceRenderPixelByPixel) {
   EXPECT_NEAR(p.wrong_pixels, right_of_border, 1e-3 * cap);
   EXPECT_NEAR(p.WrongPartRate(), static_cast<double>(right_of_border) / (cap + flat), 1e-5);
   EXPECT_NEAR(p.UntexturedRate(), static_cast<double>(flat) / (cap + flat), 1e-12);
+}
+
+// A blended pixel: contributors with shares 1/4 (a texel wholly of another part) and 3/4
+// (wholly right) make a wrong share of 1/4; a third, unused channel adds nothing.
+TEST(PartProvenance, BlendedContributorsCountByTheirShares) {
+  const Fixture f;
+  ReferenceRender render;
+  render.mask = ImageGray8(1, 1, 1, 255);
+  render.part = Image<int32_t>(1, 1, 1, 0);
+  render.source_frame = Image<int32_t>(1, 1, 3, -1);
+  render.source_pixel = Image<float>(1, 1, 6, -1.0f);
+  render.source_weight = Image<float>(1, 1, 3, 0.0f);
+  render.source_frame.at(0, 0, 0) = 3;  // crop texel (2, 0): torso
+  render.source_pixel.at(0, 0, 0) = 2;
+  render.source_pixel.at(0, 0, 1) = 0;
+  render.source_weight.at(0, 0, 0) = 0.25f;
+  render.source_frame.at(0, 0, 1) = 4;  // crop texel (0, 1): arm
+  render.source_pixel.at(0, 0, 2) = 0;
+  render.source_pixel.at(0, 0, 3) = 1;
+  render.source_weight.at(0, 0, 1) = 0.75f;
+  const std::vector<BodyPart> arm = {BodyPart::kLeftForearm};
+  std::vector<int> frames;
+  const PartProvenance p = MeasurePartProvenance(render, arm, [&](int n) {
+    frames.push_back(n);
+    return f.source();
+  });
+  EXPECT_EQ(frames, (std::vector<int>{3, 4}));
+  EXPECT_EQ(p.subject_pixels, 1);
+  EXPECT_EQ(p.textured_pixels, 1);
+  EXPECT_DOUBLE_EQ(p.wrong_pixels, 0.25);
 }
 
 TEST(PartProvenance, EmptyRenderHasZeroRates) {

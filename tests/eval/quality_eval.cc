@@ -116,7 +116,7 @@ struct QualityHarness::State {
     if (it != texture_of_frame.end()) return it->second;
     const viewer::StoredTexture t = clip.Texture(n);
     const int index = renderer.UploadTexture(t);
-    crops[n] = ReferenceCrop{t.color, t.mask, t.camera};
+    crops[n] = ReferenceCrop{t.color, t.mask, t.camera, t.part_labels, t.depth_m};
     frame_of_texture[index] = n;
     return texture_of_frame[n] = index;
   }
@@ -183,7 +183,7 @@ Expected<Eigen::Isometry3d> QualityHarness::ViewerFromWorld(double view_deg) con
 }
 
 Expected<FrameEvaluation> QualityHarness::Evaluate(const QualityMethod& method, double view_deg,
-                                                   int k) {
+                                                   int k, PartSelectionHistory* history) {
   State& s = *state_;
   REENACT_CHECK(k >= 0 && k < s.clip.frame_count(), "output frame out of range");
   const auto viewer_from_world = ViewerFromWorld(view_deg);
@@ -192,7 +192,7 @@ Expected<FrameEvaluation> QualityHarness::Evaluate(const QualityMethod& method, 
   FrameEvaluation e;
   const auto t0 = std::chrono::steady_clock::now();
   e.frame = method.build(s.clip, k, s.camera, *viewer_from_world,
-                         [&s](int n) { return s.TextureFor(n); });
+                         [&s](int n) { return s.TextureFor(n); }, history);
   e.rendered = s.renderer.Render(e.frame.draw);
   e.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   REENACT_CHECK(e.frame.cylinder_parts.size() == e.frame.draw.cylinders.size(),
@@ -202,12 +202,14 @@ Expected<FrameEvaluation> QualityHarness::Evaluate(const QualityMethod& method, 
   for (const viewer::CylinderDraw& c : e.frame.draw.cylinders) {
     ReferencePart part;
     part.cylinder = Cylinder{c.a, c.b, c.radius};
-    part.stored_from_viewer = c.stored_from_viewer;
     part.color = c.color;
-    if (c.texture >= 0 && e.frame.draw.textured) {
-      part.stored_frame = s.frame_of_texture.at(c.texture);
-      part.crop = &s.crops.at(part.stored_frame);
-    }
+    part.part = c.part;
+    part.texturing = c.texturing;
+    if (e.frame.draw.textured)
+      for (const viewer::TextureCandidate& t : c.candidates) {
+        const int n = s.frame_of_texture.at(t.texture);
+        part.candidates.push_back({&s.crops.at(n), n, t.stored_from_viewer, t.weight});
+      }
     parts.push_back(part);
   }
   e.reference = RenderReference(s.camera, parts);
@@ -261,8 +263,9 @@ Expected<QualityRun> RunQuality(const QualityOptions& options) {
       std::vector<double> ms;
       int psnr_frames = 0, flicker_pairs = 0;
       std::optional<FrameEvaluation> previous;
+      PartSelectionHistory history;
       for (int k = 0; k < run.clip_frames; k += options.frame_step) {
-        auto e = harness->Evaluate(*method, view, k);
+        auto e = harness->Evaluate(*method, view, k, &history);
         if (!e.ok()) return e.error();
         ms.push_back(e->ms);
         if (previous) {

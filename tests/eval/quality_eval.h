@@ -139,7 +139,9 @@ class QualityHarness {
   Expected<Eigen::Isometry3d> ViewerFromWorld(double view_deg) const;
 
   // Output frame k (0 <= k < clip().frame_count(), CHECK) of the method from the view.
-  Expected<FrameEvaluation> Evaluate(const QualityMethod& method, double view_deg, int k);
+  // history: as QualityMethod::build's (may be null).
+  Expected<FrameEvaluation> Evaluate(const QualityMethod& method, double view_deg, int k,
+                                     PartSelectionHistory* history = nullptr);
 
   struct State;
 

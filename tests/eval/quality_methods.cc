@@ -1,36 +1,63 @@
 #include "tests/eval/quality_methods.h"
 
+#include "viewer-client/play/texturing_presets.h"
+
 namespace reenact::eval {
+namespace {
+
+using viewer::TextureSelection;
+using viewer::TexturingOptions;
+
+// The thesis's pose (the stored skeleton) or the steady track's, drawn with `texturing`;
+// cylinders only.
+QualityMethod::Build Method(bool steady, const TexturingOptions& texturing) {
+  return [steady, texturing](const viewer::Reenactment& clip, int k, const PinholeCamera& camera,
+                             const Eigen::Isometry3d& viewer_from_world,
+                             const std::function<int(int)>& texture_for_frame,
+                             PartSelectionHistory* history) {
+    const Skeleton& pose = steady ? clip.SteadySkeletonInWorld(k) : clip.frame(k).skeleton_in_world;
+    viewer::ReenactedFrame frame =
+        clip.BuildPosed(k, pose, camera, viewer_from_world, texture_for_frame, texturing, history);
+    frame.draw.bones.clear();
+    frame.draw.floor.reset();
+    frame.draw.background = nullptr;
+    return frame;
+  };
+}
+
+TexturingOptions Preset(std::string_view name) { return viewer::TexturingPreset(name).value(); }
+
+}  // namespace
 
 const std::vector<QualityMethod>& QualityMethods() {
   static const std::vector<QualityMethod> methods = {
       {"thesis",
        "the thesis exactly: whole-skeleton Eq. 5 selects one stored frame per output frame, "
        "Eq. 6-16 map every cylinder onto it, no occlusion handling",
-       [](const viewer::Reenactment& clip, int k, const PinholeCamera& camera,
-          const Eigen::Isometry3d& viewer_from_world,
-          const std::function<int(int)>& texture_for_frame) {
-         viewer::ReenactedFrame frame = clip.Build(k, camera, viewer_from_world, texture_for_frame);
-         frame.draw.bones.clear();
-         frame.draw.floor.reset();
-         frame.draw.background = nullptr;
-         return frame;
-       }},
+       Method(false, {})},
       {"steady",
        "thesis + steady motion: the posed skeleton from the clip's steady track (skeletons the "
        "capture flagged interpolated across from their neighbours, every joint One Euro "
        "filtered: min cutoff 1 Hz, beta 8 Hz per m/s, derivative cutoff 1 Hz, "
        "forward and backward; common/filter/steady_motion.h); selection and mapping as the thesis",
-       [](const viewer::Reenactment& clip, int k, const PinholeCamera& camera,
-          const Eigen::Isometry3d& viewer_from_world,
-          const std::function<int(int)>& texture_for_frame) {
-         viewer::ReenactedFrame frame = clip.BuildPosed(k, clip.SteadySkeletonInWorld(k), camera,
-                                                        viewer_from_world, texture_for_frame);
-         frame.draw.bones.clear();
-         frame.draw.floor.reset();
-         frame.draw.background = nullptr;
-         return frame;
-       }},
+       Method(true, {})},
+      {"per-part",
+       "thesis + per-part selection: each body part textured from its own best stored frame, "
+       "ranked by the part's view and the pose of the part and its neighbours "
+       "(common/texture/part_selection.h), among frames where the part lies inside the crop",
+       Method(false, Preset("per-part"))},
+      {"occlusion",
+       "per-part + occlusion-aware texturing: the 3 best frames per part, each fragment "
+       "coloured by the first in which its point is visible (the stored part-label map shows "
+       "the same part and the stored depth agrees; common/render/texturing.h)",
+       Method(false, Preset("occlusion"))},
+      {"blend",
+       "occlusion + blending: each fragment the weighted mean of the visible candidates "
+       "(unstructured-lumigraph weights from the per-part cost, which holds viewing-angle and "
+       "pose difference), with hysteresis 0.1 on the chosen frames",
+       Method(false, Preset("blend"))},
+      {"all", "blend + steady motion: every step of issue 9 together",
+       Method(true, Preset("blend"))},
   };
   return methods;
 }

@@ -18,13 +18,17 @@
 namespace reenact::eval {
 
 struct QualityMethod {
+  using Build = std::function<viewer::ReenactedFrame(
+      const viewer::Reenactment& clip, int k, const PinholeCamera& viewer_camera,
+      const Eigen::Isometry3d& viewer_from_world, const std::function<int(int)>& texture_for_frame,
+      PartSelectionHistory* history)>;
+
   std::string name;     // command-line name, e.g. "thesis"
   std::string summary;  // one line for the docs
-  // texture_for_frame maps a stored frame to the renderer's texture index (uploads on demand).
-  std::function<viewer::ReenactedFrame(
-      const viewer::Reenactment& clip, int k, const PinholeCamera& viewer_camera,
-      const Eigen::Isometry3d& viewer_from_world, const std::function<int(int)>& texture_for_frame)>
-      build;
+  // texture_for_frame maps a stored frame to the renderer's texture index (uploads on demand);
+  // history (may be null) carries per-part selection from one output frame to the next of the
+  // same viewpoint, for hysteresis.
+  Build build;
 };
 
 // Every method, in the order tables list them.

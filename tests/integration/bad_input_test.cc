@@ -138,6 +138,18 @@ TEST(BadInput, PlayWithServerDownFailsClearly) {
   ExpectOneLineError(r, "cannot reach server");
 }
 
+// The texturing is checked before the server is contacted (none listens on port 1).
+TEST(BadInput, UnknownTexturingListsTheKnownOnes) {
+  TempDir tmp;
+  for (const char* camera : {"orbit", "synthetic:turn-and-kick"}) {
+    const auto r = RunProcess({kViewer, "play", "abc", "--server", "http://127.0.0.1:1", "--camera",
+                               camera, "--texturing", "sharpest", "--headless", "--out",
+                               tmp.path() + "/out"},
+                              kQuick);
+    ExpectOneLineError(r, "unknown texturing 'sharpest'; known: thesis, per-part, occlusion, blend");
+  }
+}
+
 // AR play: the viewer's camera is opened before the clip is fetched, so these need no server.
 TEST(BadInput, ArCameraWithoutFramesFailsClearly) {
   TempDir tmp;

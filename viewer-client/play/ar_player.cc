@@ -159,7 +159,8 @@ Expected<ArFrame> ArCompositor::Process(const CameraFrame& frame, std::optional<
   if (out.reloc.viewer_from_world) {
     t = Clock::now();
     ReenactedFrame rf = reenactment_.Build(out.clip_frame, render_camera_,
-                                           *out.reloc.viewer_from_world, std::ref(textures_));
+                                           *out.reloc.viewer_from_world, std::ref(textures_),
+                                           &selection_history_);
     rf.draw.background = &background;
     rf.draw.textured = options_.textured;
     if (!options_.draw_skeleton) rf.draw.bones.clear();

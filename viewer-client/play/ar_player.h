@@ -112,6 +112,7 @@ class ArCompositor {
   Renderer& renderer_;
   ArFrameOptions options_;
   TextureCache textures_;
+  PartSelectionHistory selection_history_;  // per-part selection across output frames
   int frames_ = 0;
   std::optional<double> first_timestamp_s_;
 };

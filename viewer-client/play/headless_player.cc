@@ -56,9 +56,10 @@ Expected<PlaySummary> PlayHeadless(const Reenactment& reenactment, const std::st
   std::vector<ImageRgb8> rendered;
   std::vector<double> render_seconds;
   nlohmann::json frames_json = nlohmann::json::array();
+  PartSelectionHistory history;
   for (int k = 0; k < frames; ++k) {
-    ReenactedFrame rf =
-        reenactment.Build(k, camera, view->viewer_from_world, std::ref(texture_for_frame));
+    ReenactedFrame rf = reenactment.Build(k, camera, view->viewer_from_world,
+                                          std::ref(texture_for_frame), &history);
     rf.draw.floor = view->floor;
     rf.draw.textured = options.textured;
     if (!options.draw_skeleton) rf.draw.bones.clear();

@@ -1,9 +1,12 @@
 #include "viewer-client/play/reenactment.h"
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 
 #include "common/error/check.h"
 #include "common/texture/texture_mapping.h"
+#include "common/texture/visibility_maps.h"
 
 namespace reenact::viewer {
 namespace {
@@ -17,7 +20,37 @@ Eigen::Vector3f PartColor(int part) {
   return {kHues[part][0], kHues[part][1], kHues[part][2]};
 }
 
+// Bit Index(p) set where both joints of part p lie in front of the crop camera and project
+// inside the crop: a part cut off at the crop's border would leave holes.
+uint16_t PartsInsideCrop(const Skeleton& skeleton_in_sensor, const PinholeCamera& crop) {
+  uint16_t mask = 0;
+  for (int p = 0; p < kBodyPartCount; ++p) {
+    const auto [ja, jb] = PartJoints(static_cast<BodyPart>(p));
+    if (!skeleton_in_sensor.HasPart(static_cast<BodyPart>(p))) continue;
+    bool inside = true;
+    for (Joint j : {ja, jb}) {
+      const auto uv = crop.Project(skeleton_in_sensor[j]);
+      inside = inside && uv && uv->x() >= -0.5 && uv->y() >= -0.5 && uv->x() <= crop.width - 0.5 &&
+               uv->y() <= crop.height - 0.5;
+    }
+    if (inside) mask |= static_cast<uint16_t>(1u << p);
+  }
+  return mask;
+}
+
 }  // namespace
+
+void TexturingOptions::Check() const {
+  REENACT_CHECK(
+      candidates >= 1 && candidates <= kMaxTextureCandidates,
+      "texturing candidates must be in [1, " + std::to_string(kMaxTextureCandidates) + "]");
+  REENACT_CHECK(selection == TextureSelection::kPerPart || candidates == 1,
+                "whole-body selection takes exactly one candidate; use per-part selection for "
+                "more");
+  REENACT_CHECK(hysteresis >= 0 && hysteresis < 1, "hysteresis must be in [0, 1)");
+  REENACT_CHECK(std::isfinite(missing_joint_cost_m) && missing_joint_cost_m >= 0,
+                "missing_joint_cost_m must be finite and >= 0");
+}
 
 Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFrame> frames,
                          const ReenactmentOptions& options)
@@ -29,12 +62,22 @@ Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFr
   for (size_t n = 0; n < frames_.size(); ++n) {
     const proto::ClipFrame& f = frames_[n];
     skeletons_in_sensor_.push_back(f.skeleton_in_world.Transformed(f.world_from_sensor.inverse()));
-    usable_[n] = std::any_of(f.mask.data.begin(), f.mask.data.end(), [](uint8_t v) { return v > 127; });
+    usable_[n] =
+        std::any_of(f.mask.data.begin(), f.mask.data.end(), [](uint8_t v) { return v > 127; });
   }
   for (int64_t n : manifest_.flagged_skeleton_frames)
     if (n >= 0 && n < manifest_.frame_count) usable_[n] = false;
   texture_index_ =
       TextureIndex(skeletons_in_sensor_, std::span<const bool>(usable_.get(), frames_.size()));
+  std::vector<uint16_t> part_allowed(frames_.size(), 0);
+  for (size_t n = 0; n < frames_.size(); ++n)
+    if (usable_[n]) {
+      const proto::ClipFrame& f = frames_[n];
+      part_allowed[n] = PartsInsideCrop(
+          skeletons_in_sensor_[n],
+          manifest_.color_camera.Cropped(f.crop_x, f.crop_y, f.color.width, f.color.height));
+    }
+  part_index_ = PartTextureIndex(skeletons_in_sensor_, part_allowed);
 
   std::vector<Skeleton> in_world;
   std::vector<double> times;
@@ -63,53 +106,76 @@ Eigen::Vector3d Reenactment::SubjectCentre() const {
 
 StoredTexture Reenactment::Texture(int n) const {
   const proto::ClipFrame& f = frames_.at(n);
-  return {f.color, f.mask,
-          manifest_.color_camera.Cropped(f.crop_x, f.crop_y, f.color.width, f.color.height)};
+  const PinholeCamera camera =
+      manifest_.color_camera.Cropped(f.crop_x, f.crop_y, f.color.width, f.color.height);
+  VisibilityMaps maps = MakeVisibilityMaps(skeletons_in_sensor_.at(n), manifest_.radius_ratio,
+                                           camera, f.mask, f.depth, manifest_.depth_scale_m);
+  return {f.color, f.mask, camera, std::move(maps.part_labels), std::move(maps.depth_m)};
 }
 
 ReenactedFrame Reenactment::Build(int k, const PinholeCamera& viewer_camera,
                                   const Eigen::Isometry3d& viewer_from_world,
-                                  const std::function<int(int)>& texture_for_frame) const {
+                                  const std::function<int(int)>& texture_for_frame,
+                                  PartSelectionHistory* history) const {
   REENACT_CHECK(k >= 0 && k < frame_count(), "output frame out of range");
   return BuildPosed(k, options_.steady_motion ? steady_in_world_[k] : frames_[k].skeleton_in_world,
-                    viewer_camera, viewer_from_world, texture_for_frame);
+                    viewer_camera, viewer_from_world, texture_for_frame, options_.texturing,
+                    history);
 }
 
 ReenactedFrame Reenactment::BuildPosed(int k, const Skeleton& skeleton_in_world,
                                        const PinholeCamera& viewer_camera,
                                        const Eigen::Isometry3d& viewer_from_world,
-                                       const std::function<int(int)>& texture_for_frame) const {
+                                       const std::function<int(int)>& texture_for_frame,
+                                       const TexturingOptions& texturing,
+                                       PartSelectionHistory* history) const {
   REENACT_CHECK(k >= 0 && k < frame_count(), "output frame out of range");
+  texturing.Check();
   ReenactedFrame out;
   out.clip_frame = k;
   out.draw.camera = viewer_camera;
   const Skeleton viewer_skeleton = skeleton_in_world.Transformed(viewer_from_world);
 
-  const auto ranked = texture_index_.Rank(viewer_skeleton);
-  const int n_bar = ranked.empty() ? -1 : ranked.front().frame;
-  out.texture_frame = n_bar;
-  const int texture = n_bar < 0 ? -1 : texture_for_frame(n_bar);
+  // Ranked stored frames (with weights) per part.
+  PartCandidates chosen;
+  if (texturing.selection == TextureSelection::kPerPart) {
+    chosen = part_index_.Select(viewer_skeleton,
+                                {.top_k = texturing.candidates,
+                                 .missing_joint_cost_m = texturing.missing_joint_cost_m,
+                                 .hysteresis = texturing.hysteresis},
+                                history);
+    const auto& torso = chosen[Index(BodyPart::kUpperTorso)];
+    out.texture_frame = torso.empty() ? -1 : torso.front().frame;
+  } else {
+    const auto ranked = texture_index_.Rank(
+        viewer_skeleton, {.top_k = 1, .missing_joint_cost_m = texturing.missing_joint_cost_m});
+    out.texture_frame = ranked.empty() ? -1 : ranked.front().frame;
+    if (out.texture_frame >= 0)
+      for (auto& part : chosen) part.push_back({out.texture_frame, ranked.front().cost, 1.0});
+  }
 
   const auto cylinders = PoseCylinders(viewer_skeleton, manifest_.radius_ratio);
   for (int p = 0; p < kBodyPartCount; ++p) {
     if (!cylinders[p]) continue;
+    const BodyPart part = static_cast<BodyPart>(p);
     CylinderDraw draw;
     draw.a = cylinders[p]->a;
     draw.b = cylinders[p]->b;
     draw.radius = cylinders[p]->radius;
     draw.color = PartColor(p);
-    if (n_bar >= 0) {
-      const auto [ja, jb] = PartJoints(static_cast<BodyPart>(p));
-      const Skeleton& stored = skeletons_in_sensor_[n_bar];
-      if (stored.HasPart(static_cast<BodyPart>(p))) {
-        if (auto m = StoredFromViewerMapping(draw.a, draw.b, stored[ja], stored[jb])) {
-          draw.stored_from_viewer = *m;
-          draw.texture = texture;
-        }
-      }
+    draw.part = part;
+    draw.texturing = texturing.mode;
+    const auto [ja, jb] = PartJoints(part);
+    for (const PartCandidate& c : chosen[p]) {
+      const Skeleton& stored = skeletons_in_sensor_[c.frame];
+      if (!stored.HasPart(part)) continue;
+      const auto m = StoredFromViewerMapping(draw.a, draw.b, stored[ja], stored[jb]);
+      if (!m) continue;
+      const int texture = texture_for_frame(c.frame);
+      if (texture >= 0) draw.candidates.push_back({texture, *m, c.weight});
     }
     out.draw.cylinders.push_back(draw);
-    out.cylinder_parts.push_back(static_cast<BodyPart>(p));
+    out.cylinder_parts.push_back(part);
   }
   for (int p = 0; p < kBodyPartCount; ++p) {
     const auto [ja, jb] = PartJoints(static_cast<BodyPart>(p));

@@ -7,15 +7,21 @@
 // steady track (common/filter/steady_motion.h: flagged skeletons interpolated across, joints
 // One Euro filtered over the frames' timestamps) instead of the stored one; texture selection
 // still ranks the stored, unflagged skeletons.
+// Texturing (issue 9, TexturingOptions; default the thesis): the stored frames may be chosen
+// per body part (common/texture/part_selection.h) with a few ranked candidates per part,
+// drawn by the renderer's occlusion-aware or blending modes (common/render/texturing.h), and
+// held across output frames by hysteresis (the caller keeps a PartSelectionHistory per
+// viewer stream).
 
+#include <Eigen/Geometry>
 #include <functional>
 #include <memory>
 #include <vector>
 
-#include <Eigen/Geometry>
-
 #include "common/filter/steady_motion.h"
 #include "common/model/cylinder_model.h"
+#include "common/render/texturing.h"
+#include "common/texture/part_selection.h"
 #include "common/texture/texture_index.h"
 #include "proto/clip/frame_codec.h"
 #include "proto/clip/manifest.h"
@@ -27,15 +33,39 @@ struct ReenactedFrame {
   FrameDraw draw;
   // The body part of each draw.cylinders entry, in the same order.
   std::vector<BodyPart> cylinder_parts;
-  int clip_frame = -1;     // k
-  int texture_frame = -1;  // n_bar, -1 if no stored frame could be chosen
+  int clip_frame = -1;  // k
+  // n_bar, -1 if no stored frame could be chosen; with per-part selection the upper torso's
+  // first candidate.
+  int texture_frame = -1;
+};
+
+enum class TextureSelection {
+  kWholeBody,  // thesis Eq. 5: one stored frame for the whole body
+  kPerPart,    // common/texture/part_selection.h: ranked candidates per body part
+};
+
+struct TexturingOptions {
+  TextureSelection selection = TextureSelection::kWholeBody;
+  TexturingMode mode = TexturingMode::kFirst;  // how the renderer uses the candidates
+  // Candidates per part, [1, kMaxTextureCandidates]; whole-body selection takes exactly 1.
+  int candidates = 1;
+  // Per-part selection: cost discount of the previous output frame's choice, [0, 1).
+  double hysteresis = 0;
+  double missing_joint_cost_m = 1.0;  // >= 0, as in Eq. 5
+
+  // Throws CheckError when a field is out of range or the combination is not supported.
+  void Check() const;
 };
 
 struct ReenactmentOptions {
   bool steady_motion = false;  // pose from the steady track (see above)
   SteadyMotionOptions steady;  // how the steady track is made
+  TexturingOptions texturing;  // used by Build
 
-  void Check() const { steady.Check(); }
+  void Check() const {
+    steady.Check();
+    texturing.Check();
+  }
 };
 
 class Reenactment {
@@ -51,20 +81,28 @@ class Reenactment {
   // Mean waist position over the clip (world frame): the centre the orbit camera turns about.
   Eigen::Vector3d SubjectCentre() const;
 
-  // The stored crop of frame n as the renderer uploads it.
+  // The stored crop of frame n as the renderer uploads it, with its visibility maps
+  // (common/texture/visibility_maps.h: part labels of the posed cylinder model, depth in
+  // metres), computed here on each call (the caller uploads each frame once).
   StoredTexture Texture(int n) const;
 
-  // Draw list for output frame k seen by a viewer camera. texture_for_frame maps a stored
-  // frame index to the renderer's texture index (the caller uploads Texture(n) on demand).
+  // Draw list for output frame k seen by a viewer camera, with options().texturing.
+  // texture_for_frame maps a stored frame index to the renderer's texture index (the caller
+  // uploads Texture(n) on demand). history (per-part selection with hysteresis; may be null)
+  // carries the choice from one output frame to the next of the same viewer stream.
   ReenactedFrame Build(int k, const PinholeCamera& viewer_camera,
                        const Eigen::Isometry3d& viewer_from_world,
-                       const std::function<int(int)>& texture_for_frame) const;
+                       const std::function<int(int)>& texture_for_frame,
+                       PartSelectionHistory* history = nullptr) const;
 
-  // The same with the skeleton to pose given explicitly (world frame), e.g. the steady one.
+  // The same with the skeleton to pose (world frame, e.g. the steady one) and the texturing
+  // given explicitly.
   ReenactedFrame BuildPosed(int k, const Skeleton& skeleton_in_world,
                             const PinholeCamera& viewer_camera,
                             const Eigen::Isometry3d& viewer_from_world,
-                            const std::function<int(int)>& texture_for_frame) const;
+                            const std::function<int(int)>& texture_for_frame,
+                            const TexturingOptions& texturing,
+                            PartSelectionHistory* history = nullptr) const;
 
   // Frame k's skeleton in the world frame from the steady track (always computed, with
   // options.steady, whether or not steady_motion is on).
@@ -78,8 +116,10 @@ class Reenactment {
   std::vector<Skeleton> skeletons_in_sensor_;  // S_n = M_n S'_n
   // Frames with a visible subject whose skeleton the capture did not flag.
   std::unique_ptr<bool[]> usable_;
-  TextureIndex texture_index_;                 // Eq. 5 over usable S_n, exact as the scan
-  std::vector<Skeleton> steady_in_world_;      // the steady track, world frame
+  TextureIndex texture_index_;  // Eq. 5 over usable S_n, exact as the scan
+  // Per-part selection over usable frames, each part only where it lies inside the crop.
+  PartTextureIndex part_index_;
+  std::vector<Skeleton> steady_in_world_;  // the steady track, world frame
 };
 
 }  // namespace reenact::viewer

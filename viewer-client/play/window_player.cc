@@ -31,6 +31,7 @@ Status PlayInWindow(const Reenactment& reenactment, const HeadlessPlayOptions& o
   PlaybackState state(reenactment.frame_count(), options.orbit, options.textured,
                       options.draw_skeleton);
   auto last = std::chrono::steady_clock::now();
+  PartSelectionHistory history;
   while (!window->ShouldClose() && !state.quit()) {
     window->PollEvents(state);
     const auto now = std::chrono::steady_clock::now();
@@ -40,7 +41,7 @@ Status PlayInWindow(const Reenactment& reenactment, const HeadlessPlayOptions& o
     const auto view = OrbitViewFor(reenactment, state.orbit());
     if (!view) return MakeError("degenerate", "cannot place the orbit camera");
     ReenactedFrame rf = reenactment.Build(state.frame(), camera, view->viewer_from_world,
-                                          std::ref(texture_for_frame));
+                                          std::ref(texture_for_frame), &history);
     rf.draw.floor = view->floor;
     rf.draw.textured = state.textured();
     if (!state.skeleton()) rf.draw.bones.clear();

@@ -18,6 +18,7 @@ constexpr float kJointPointSize = 5.0f;
 
 struct UploadedTexture {
   GlTexture texture;
+  GlTexture visibility;  // RG32F: part label, depth in metres
   int width = 0;
   int height = 0;
   PinholeCamera camera;
@@ -36,7 +37,16 @@ struct Renderer::Impl {
   // Declared first so that it is destroyed last, after every GL object.
   std::optional<EglContext> context;
 
-  GlProgram cylinder_program, floor_program, background_program, overlay_program;
+  // The cylinder program's variants (shaders.h): [0] kFirst, [n] the visible modes with n
+  // candidates.
+  struct CylinderProgram {
+    GlProgram program;
+    GLint projection = -1, model = -1, textured = -1, color = -1, stored = -1, intrinsics = -1,
+          size = -1;
+    GLint mode = -1, weight = -1, label = -1, depth_tolerance = -1;  // visible variants only
+  };
+  std::array<CylinderProgram, 1 + kMaxTextureCandidates> cylinder_programs;
+  GlProgram floor_program, background_program, overlay_program;
   GlVertexArray cylinder_vao, floor_vao, background_vao, overlay_vao;
   GlBuffer cylinder_vertices, cylinder_indices, floor_vertices, overlay_vertices;
   GLsizei cylinder_index_count = 0;
@@ -83,9 +93,7 @@ Status Renderer::Impl::Initialize(int w, int h) {
     const char* fragment;
   };
   for (const ProgramSource& p :
-       {ProgramSource{&cylinder_program, "cylinder", shaders::kCylinderVertex,
-                      shaders::kCylinderFragment},
-        ProgramSource{&floor_program, "floor", shaders::kFloorVertex, shaders::kFloorFragment},
+       {ProgramSource{&floor_program, "floor", shaders::kFloorVertex, shaders::kFloorFragment},
         ProgramSource{&background_program, "background", shaders::kBackgroundVertex,
                       shaders::kBackgroundFragment},
         ProgramSource{&overlay_program, "overlay", shaders::kOverlayVertex,
@@ -94,6 +102,41 @@ Status Renderer::Impl::Initialize(int w, int h) {
     if (!program) return program.error();
     *p.program = std::move(program).value();
   }
+
+  // Texture units of the cylinder programs' samplers: candidate i's crop on unit i, its
+  // visibility texture on unit kMaxTextureCandidates + i.
+  for (int variant = 0; variant <= kMaxTextureCandidates; ++variant) {
+    const bool visibility = variant > 0;
+    const int candidates = visibility ? variant : 1;
+    CylinderProgram& c = cylinder_programs[static_cast<size_t>(variant)];
+    Expected<GlProgram> program =
+        MakeProgram("cylinder", shaders::kCylinderVertex,
+                    shaders::CylinderFragment(candidates, visibility));
+    if (!program) return program.error();
+    c.program = std::move(program).value();
+    const GlProgram& p = c.program;
+    glUseProgram(p.id());
+    for (int i = 0; i < candidates; ++i) {
+      const std::string n = std::to_string(i);
+      glUniform1i(UniformLocation(p, ("u_texture" + n).c_str()), i);
+      if (visibility)
+        glUniform1i(UniformLocation(p, ("u_visibility" + n).c_str()), kMaxTextureCandidates + i);
+    }
+    c.projection = UniformLocation(p, "u_projection");
+    c.model = UniformLocation(p, "u_viewer_from_cylinder");
+    c.textured = UniformLocation(p, "u_textured");
+    c.color = UniformLocation(p, "u_color");
+    c.stored = UniformLocation(p, "u_stored_from_viewer");
+    c.intrinsics = UniformLocation(p, "u_intrinsics");
+    c.size = UniformLocation(p, "u_texture_size");
+    if (visibility) {
+      c.mode = UniformLocation(p, "u_mode");
+      c.weight = UniformLocation(p, "u_weight");
+      c.label = UniformLocation(p, "u_part_label");
+      c.depth_tolerance = UniformLocation(p, "u_depth_tolerance");
+    }
+  }
+  glUseProgram(0);
 
   const CylinderMesh mesh = MakeUnitCylinderMesh(kDefaultCylinderSegments);
   std::vector<float> interleaved;
@@ -231,39 +274,65 @@ void Renderer::Impl::DrawFloor(const FloorGrid& floor, const std::array<float, 1
 
 void Renderer::Impl::DrawCylinders(const FrameDraw& frame,
                                    const std::array<float, 16>& projection) {
-  glUseProgram(cylinder_program.id());
-  glUniformMatrix4fv(UniformLocation(cylinder_program, "u_projection"), 1, GL_FALSE,
-                     projection.data());
-  glUniform1i(UniformLocation(cylinder_program, "u_texture"), 0);
-  const GLint model_location = UniformLocation(cylinder_program, "u_viewer_from_cylinder");
-  const GLint textured_location = UniformLocation(cylinder_program, "u_textured");
-  const GLint color_location = UniformLocation(cylinder_program, "u_color");
-  const GLint stored_location = UniformLocation(cylinder_program, "u_stored_from_viewer");
-  const GLint intrinsics_location = UniformLocation(cylinder_program, "u_intrinsics");
-  const GLint size_location = UniformLocation(cylinder_program, "u_texture_size");
+  for (const CylinderProgram& c : cylinder_programs) {
+    glUseProgram(c.program.id());
+    glUniformMatrix4fv(c.projection, 1, GL_FALSE, projection.data());
+    if (c.depth_tolerance >= 0)
+      glUniform1f(c.depth_tolerance, static_cast<float>(frame.depth_tolerance_m));
+  }
   glEnable(GL_DEPTH_TEST);
   glDepthMask(GL_TRUE);
-  glActiveTexture(GL_TEXTURE0);
   glBindVertexArray(cylinder_vao.id());
+  const CylinderProgram* current = nullptr;
   for (const CylinderDraw& c : frame.cylinders) {
     if ((c.b - c.a).norm() < 1e-12) continue;
+    const bool textured = frame.textured && !c.candidates.empty();
+    const bool visibility = textured && c.texturing != TexturingMode::kFirst;
+    const int count = visibility ? static_cast<int>(c.candidates.size()) : 1;
+    const CylinderProgram& program = cylinder_programs[visibility ? static_cast<size_t>(count) : 0];
+    if (&program != current) {
+      glUseProgram(program.program.id());
+      current = &program;
+    }
     const std::array<float, 16> model = ToFloat(ViewerFromUnitCylinder(c.a, c.b, c.radius));
-    glUniformMatrix4fv(model_location, 1, GL_FALSE, model.data());
-    glUniform3f(color_location, c.color.x(), c.color.y(), c.color.z());
-    const bool textured = frame.textured && c.texture >= 0;
-    glUniform1i(textured_location, textured ? 1 : 0);
+    glUniformMatrix4fv(program.model, 1, GL_FALSE, model.data());
+    glUniform3f(program.color, c.color.x(), c.color.y(), c.color.z());
+    glUniform1i(program.textured, textured ? 1 : 0);
     if (textured) {
-      const UploadedTexture& t = textures[static_cast<size_t>(c.texture)];
-      const std::array<float, 16> stored = ToFloat(c.stored_from_viewer);
-      glUniformMatrix4fv(stored_location, 1, GL_FALSE, stored.data());
-      glUniform4f(intrinsics_location, static_cast<float>(t.camera.fx),
-                  static_cast<float>(t.camera.fy), static_cast<float>(t.camera.cx),
-                  static_cast<float>(t.camera.cy));
-      glUniform2f(size_location, static_cast<float>(t.width), static_cast<float>(t.height));
-      glBindTexture(GL_TEXTURE_2D, t.texture.id());
+      std::array<float, 16 * kMaxTextureCandidates> stored{};
+      std::array<float, 4 * kMaxTextureCandidates> intrinsics{};
+      std::array<float, 2 * kMaxTextureCandidates> size{};
+      std::array<float, kMaxTextureCandidates> weight{};
+      for (int i = 0; i < count; ++i) {
+        const TextureCandidate& candidate = c.candidates[static_cast<size_t>(i)];
+        const UploadedTexture& t = textures[static_cast<size_t>(candidate.texture)];
+        const std::array<float, 16> m = ToFloat(candidate.stored_from_viewer);
+        std::copy(m.begin(), m.end(), stored.begin() + 16 * i);
+        const float k[4] = {static_cast<float>(t.camera.fx), static_cast<float>(t.camera.fy),
+                            static_cast<float>(t.camera.cx), static_cast<float>(t.camera.cy)};
+        std::copy(k, k + 4, intrinsics.begin() + 4 * i);
+        size[2 * i] = static_cast<float>(t.width);
+        size[2 * i + 1] = static_cast<float>(t.height);
+        weight[i] = static_cast<float>(candidate.weight);
+        glActiveTexture(GL_TEXTURE0 + i);
+        glBindTexture(GL_TEXTURE_2D, t.texture.id());
+        if (visibility) {
+          glActiveTexture(GL_TEXTURE0 + kMaxTextureCandidates + i);
+          glBindTexture(GL_TEXTURE_2D, t.visibility.id());
+        }
+      }
+      glUniformMatrix4fv(program.stored, count, GL_FALSE, stored.data());
+      glUniform4fv(program.intrinsics, count, intrinsics.data());
+      glUniform2fv(program.size, count, size.data());
+      if (visibility) {
+        glUniform1i(program.mode, static_cast<int>(c.texturing));
+        glUniform1f(program.label, static_cast<float>(PartLabel(c.part)));
+        glUniform1fv(program.weight, count, weight.data());
+      }
     }
     glDrawElements(GL_TRIANGLES, cylinder_index_count, GL_UNSIGNED_INT, nullptr);
   }
+  glActiveTexture(GL_TEXTURE0);
 }
 
 void Renderer::Impl::DrawBones(const FrameDraw& frame, const std::array<float, 16>& projection) {
@@ -324,6 +393,14 @@ int Renderer::UploadTexture(const StoredTexture& texture) {
   texture.camera.Check();
   REENACT_CHECK(texture.camera.width == color.width && texture.camera.height == color.height,
                 "texture camera must have the crop's size");
+  const auto empty_or_crop_sized = [&color](const auto& image) {
+    return image.empty() || (image.channels == 1 && image.width == color.width &&
+                             image.height == color.height);
+  };
+  REENACT_CHECK(empty_or_crop_sized(texture.part_labels),
+                "texture part labels must be empty or single-channel of the crop's size");
+  REENACT_CHECK(empty_or_crop_sized(texture.depth_m),
+                "texture depth must be empty or single-channel of the crop's size");
   impl_->MakeCurrent();
   std::vector<uint8_t> rgba(static_cast<size_t>(color.width) * color.height * 4);
   for (size_t i = 0, n = static_cast<size_t>(color.width) * color.height; i < n; ++i) {
@@ -331,7 +408,8 @@ int Renderer::UploadTexture(const StoredTexture& texture) {
     for (int c = 0; c < 3; ++c) rgba[4 * i + c] = subject ? color.data[3 * i + c] : 0;
     rgba[4 * i + 3] = subject ? 255 : 0;
   }
-  UploadedTexture uploaded{MakeTexture(), color.width, color.height, texture.camera};
+  UploadedTexture uploaded{MakeTexture(), MakeTexture(), color.width, color.height,
+                           texture.camera};
   glBindTexture(GL_TEXTURE_2D, uploaded.texture.id());
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -340,6 +418,18 @@ int Renderer::UploadTexture(const StoredTexture& texture) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, color.width, color.height, 0, GL_RGBA,
                GL_UNSIGNED_BYTE, rgba.data());
+  std::vector<float> label_depth(static_cast<size_t>(color.width) * color.height * 2, 0.0f);
+  for (size_t i = 0, n = static_cast<size_t>(color.width) * color.height; i < n; ++i) {
+    if (!texture.part_labels.empty()) label_depth[2 * i] = texture.part_labels.data[i];
+    if (!texture.depth_m.empty()) label_depth[2 * i + 1] = texture.depth_m.data[i];
+  }
+  glBindTexture(GL_TEXTURE_2D, uploaded.visibility.id());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, color.width, color.height, 0, GL_RG, GL_FLOAT,
+               label_depth.data());
   impl_->textures.push_back(std::move(uploaded));
   return static_cast<int>(impl_->textures.size() - 1);
 }
@@ -370,11 +460,20 @@ void Renderer::Draw(const FrameDraw& frame) {
   for (const CylinderDraw& c : frame.cylinders) {
     REENACT_CHECK(c.a.allFinite() && c.b.allFinite() && std::isfinite(c.radius) && c.radius > 0,
                   "cylinder end points must be finite and its radius positive");
-    REENACT_CHECK(c.stored_from_viewer.allFinite(), "stored_from_viewer must be finite");
     REENACT_CHECK(c.color.allFinite(), "cylinder colour must be finite");
-    REENACT_CHECK(c.texture >= -1 && c.texture < static_cast<int>(impl_->textures.size()),
-                  "cylinder texture index " + std::to_string(c.texture) + " was never uploaded");
+    REENACT_CHECK(c.candidates.size() <= static_cast<size_t>(kMaxTextureCandidates),
+                  "a cylinder has at most " + std::to_string(kMaxTextureCandidates) +
+                      " texture candidates");
+    for (const TextureCandidate& t : c.candidates) {
+      REENACT_CHECK(t.stored_from_viewer.allFinite(), "stored_from_viewer must be finite");
+      REENACT_CHECK(std::isfinite(t.weight) && t.weight >= 0,
+                    "candidate weights must be finite and >= 0");
+      REENACT_CHECK(t.texture >= 0 && t.texture < static_cast<int>(impl_->textures.size()),
+                    "cylinder texture index " + std::to_string(t.texture) + " was never uploaded");
+    }
   }
+  REENACT_CHECK(std::isfinite(frame.depth_tolerance_m) && frame.depth_tolerance_m >= 0,
+                "depth_tolerance_m must be finite and >= 0");
   for (const auto& [p, q] : frame.bones) {
     REENACT_CHECK(p.allFinite() && q.allFinite(), "bone end points must be finite");
   }

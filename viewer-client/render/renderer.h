@@ -1,5 +1,6 @@
 #pragma once
-// The viewer's OpenGL renderer: textured cylinders (thesis Eq. 16 per fragment), an optional
+// The viewer's OpenGL renderer: textured cylinders (thesis Eq. 16 per fragment, with the
+// candidates and texturing modes of common/render/texturing.h), an optional
 // floor grid (free viewpoint) or camera image behind (AR), and a skeleton overlay on top.
 // One code path serves headless rendering (EGL surfaceless, owned context) and the window
 // (render/window.h, the window's context). Every geometric quantity is in the viewer camera
@@ -24,6 +25,8 @@
 #include "common/error/expected.h"
 #include "common/geometry/pinhole_camera.h"
 #include "common/image/image.h"
+#include "common/render/texturing.h"
+#include "common/skeleton/skeleton.h"
 #include "viewer-client/render/egl_context.h"
 
 namespace reenact::viewer {
@@ -33,6 +36,21 @@ struct StoredTexture {
   ImageRgb8 color;       // channels 3
   ImageGray8 mask;       // channels 1, same size as color; 255 = subject, 0 = not
   PinholeCamera camera;  // intrinsics of this crop (Cropped() of the colour camera)
+  // Visibility data (common/render/texturing.h; common/texture/visibility_maps.h makes
+  // both), each empty or channels 1 of the crop's size: the posed cylinder model's part
+  // labels (PartLabel or kBackgroundLabel; empty: no point counts as visible) and the
+  // stored depth in metres (0 = no reading; empty: the depth test always passes).
+  ImageLabel8 part_labels;
+  Image<float> depth_m;
+};
+
+// One texture candidate of a cylinder (common/render/texturing.h).
+struct TextureCandidate {
+  int texture = 0;  // index returned by Renderer::UploadTexture
+  // Similarity mapping a viewer-frame point on this cylinder to the stored frame's sensor
+  // frame (thesis Eq. 16, p_n = Q Omega p*); bottom row (0, 0, 0, 1).
+  Eigen::Matrix4d stored_from_viewer = Eigen::Matrix4d::Identity();
+  double weight = 1;  // >= 0; used by TexturingMode::kBlendVisible
 };
 
 // One body-part cylinder to draw.
@@ -40,10 +58,10 @@ struct CylinderDraw {
   Eigen::Vector3d a = Eigen::Vector3d::Zero();  // axis end points, viewer frame, metres
   Eigen::Vector3d b = Eigen::Vector3d::UnitZ();
   double radius = 0.05;  // metres, > 0
-  // Similarity mapping a viewer-frame point on this cylinder to the stored frame's sensor
-  // frame (thesis Eq. 16, p_n = Q Omega p*); bottom row (0, 0, 0, 1).
-  Eigen::Matrix4d stored_from_viewer = Eigen::Matrix4d::Identity();
-  int texture = -1;  // index returned by Renderer::UploadTexture; -1 = untextured
+  // Ranked texture candidates, at most kMaxTextureCandidates; empty = untextured.
+  std::vector<TextureCandidate> candidates;
+  BodyPart part = BodyPart::kHead;  // the body part modelled (visibility test (a))
+  TexturingMode texturing = TexturingMode::kFirst;
   Eigen::Vector3f color{0.7f, 0.7f, 0.7f};  // flat colour (linear RGB in [0, 1]) when
                                             // untextured or FrameDraw::textured is false
 };
@@ -65,6 +83,8 @@ struct FrameDraw {
   const ImageRgb8* background = nullptr;   // AR: the viewer's camera image, camera's size
   Eigen::Vector3f clear_color{0.16f, 0.17f, 0.19f};
   bool textured = true;                    // false: bare cylinders in flat colours
+  // Visibility test (b) of common/render/texturing.h, metres; finite, >= 0.
+  double depth_tolerance_m = kDefaultDepthToleranceM;
   // Skeleton overlay line segments (viewer frame), drawn on top with joint dots.
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> bones;
   Eigen::Vector3f bone_color{1.0f, 0.85f, 0.1f};
@@ -92,9 +112,11 @@ class Renderer {
   Renderer& operator=(Renderer&&) noexcept;
   ~Renderer();
 
-  // Uploads a crop (premultiplied RGBA: mask in alpha) and returns its index, counting from
-  // 0. Preconditions (CHECK): colour has 3 channels, mask 1 channel and the same size, not
-  // empty, and camera has the crop's size and passes Check().
+  // Uploads a crop (premultiplied RGBA: mask in alpha, linear filtering) and its visibility
+  // data (one RG32F texture: label, depth in metres; nearest sampling) and returns its
+  // index, counting from 0. Preconditions (CHECK): colour has 3 channels, mask 1 channel and
+  // the same size, not empty, camera has the crop's size and passes Check(), part labels
+  // and depth each empty or 1 channel of the crop's size.
   int UploadTexture(const StoredTexture& texture);
   size_t texture_count() const;
   // Frees every uploaded texture; indices start again at 0.
@@ -103,9 +125,10 @@ class Renderer {
   // Draw + ReadBack.
   RenderedFrame Render(const FrameDraw& frame);
   // Draws into the offscreen framebuffer (resized to the camera if needed). Preconditions
-  // (CHECK): camera passes Check(); texture indices are -1 or uploaded; radii > 0 and every
-  // point finite; background, if set, is RGB with the camera's size. A cylinder whose end
-  // points coincide draws nothing.
+  // (CHECK): camera passes Check(); at most kMaxTextureCandidates candidates per cylinder,
+  // their texture indices uploaded, matrices finite and weights finite and >= 0; radii > 0
+  // and every point finite; depth_tolerance_m finite and >= 0; background, if set, is RGB
+  // with the camera's size. A cylinder whose end points coincide draws nothing.
   void Draw(const FrameDraw& frame);
   // The last Draw, rows flipped to top-down.
   RenderedFrame ReadBack() const;

@@ -1,5 +1,7 @@
 #include "viewer-client/render/shaders.h"
 
+#include <string>
+
 namespace reenact::viewer::shaders {
 
 const char* const kCylinderVertex = R"(#version 330 core
@@ -17,36 +19,123 @@ void main() {
 }
 )";
 
-const char* const kCylinderFragment = R"(#version 330 core
+namespace {
+
+// After "#version 330 core" and the defines CANDIDATES (1..3) and VISIBILITY (0 or 1).
+const char* const kCylinderFragmentBody = R"(
 in vec3 v_position;
 in vec3 v_normal;
 uniform int u_textured;
 uniform vec3 u_color;
-uniform mat4 u_stored_from_viewer;
-uniform vec4 u_intrinsics;
-uniform vec2 u_texture_size;
-uniform sampler2D u_texture;
+uniform mat4 u_stored_from_viewer[CANDIDATES];
+uniform vec4 u_intrinsics[CANDIDATES];
+uniform vec2 u_texture_size[CANDIDATES];
+uniform sampler2D u_texture0;
+#if VISIBILITY
+uniform int u_mode;
+uniform float u_weight[CANDIDATES];
+uniform float u_part_label;
+uniform float u_depth_tolerance;
+uniform sampler2D u_visibility0;
+#endif
+#if CANDIDATES > 1
+uniform sampler2D u_texture1;
+uniform sampler2D u_visibility1;
+#endif
+#if CANDIDATES > 2
+uniform sampler2D u_texture2;
+uniform sampler2D u_visibility2;
+#endif
 layout(location = 0) out vec4 out_color;
+
+// 0: unusable, 1: usable, 2: usable and visible.
+#if VISIBILITY
+int Candidate(int i, sampler2D tex, sampler2D vis, out vec3 rgb) {
+#else
+int Candidate(int i, sampler2D tex, out vec3 rgb) {
+#endif
+  rgb = vec3(0.0);
+  vec4 ps = u_stored_from_viewer[i] * vec4(v_position, 1.0);
+  vec3 p = ps.xyz / ps.w;
+  if (p.z <= 0.0) return 0;
+  vec2 uv = vec2(u_intrinsics[i].x * p.x / p.z + u_intrinsics[i].z,
+                 u_intrinsics[i].y * p.y / p.z + u_intrinsics[i].w);
+  vec2 tc = (uv + 0.5) / u_texture_size[i];
+  if (any(lessThan(tc, vec2(0.0))) || any(greaterThan(tc, vec2(1.0)))) return 0;
+  vec4 texel = texture(tex, tc);
+  if (texel.a < 0.5) return 0;
+  rgb = texel.rgb / texel.a;
+#if VISIBILITY
+  ivec2 size = ivec2(u_texture_size[i]);
+  ivec2 nearest = clamp(ivec2(floor(uv + 0.5)), ivec2(0), size - 1);
+  vec2 label_depth = texelFetch(vis, nearest, 0).rg;
+  if (label_depth.r != u_part_label) return 1;
+  if (label_depth.g > 0.0 && !(abs(label_depth.g - p.z) <= u_depth_tolerance)) return 1;
+  return 2;
+#else
+  return 1;
+#endif
+}
+
 void main() {
-  if (u_textured != 0) {
-    vec4 ps = u_stored_from_viewer * vec4(v_position, 1.0);
-    vec3 p = ps.xyz / ps.w;
-    if (p.z <= 0.0) discard;
-    vec2 uv = vec2(u_intrinsics.x * p.x / p.z + u_intrinsics.z,
-                   u_intrinsics.y * p.y / p.z + u_intrinsics.w);
-    vec2 tc = (uv + 0.5) / u_texture_size;
-    if (any(lessThan(tc, vec2(0.0))) || any(greaterThan(tc, vec2(1.0)))) discard;
-    vec4 texel = texture(u_texture, tc);
-    if (texel.a < 0.5) discard;
-    out_color = vec4(texel.rgb / texel.a, 1.0);
-  } else {
+  if (u_textured == 0) {
     vec3 n = normalize(v_normal);
     vec3 to_eye = normalize(-v_position);
     float lambert = abs(dot(n, to_eye));
     out_color = vec4(u_color * (0.35 + 0.65 * lambert), 1.0);
+    return;
   }
+#if !VISIBILITY
+  vec3 rgb0;
+  if (Candidate(0, u_texture0, rgb0) == 0) discard;
+  out_color = vec4(rgb0, 1.0);
+#else
+  vec3 rgb[CANDIDATES];
+  int state[CANDIDATES];
+  state[0] = Candidate(0, u_texture0, u_visibility0, rgb[0]);
+#if CANDIDATES > 1
+  state[1] = Candidate(1, u_texture1, u_visibility1, rgb[1]);
+#endif
+#if CANDIDATES > 2
+  state[2] = Candidate(2, u_texture2, u_visibility2, rgb[2]);
+#endif
+  if (u_mode == 2) {
+    float total = 0.0;
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < CANDIDATES; ++i) {
+      if (state[i] == 2 && u_weight[i] > 0.0) {
+        total += u_weight[i];
+        sum += u_weight[i] * rgb[i];
+      }
+    }
+    if (total > 0.0) {
+      out_color = vec4(sum / total, 1.0);
+      return;
+    }
+  }
+  for (int i = 0; i < CANDIDATES; ++i) {
+    if (state[i] == 2) {
+      out_color = vec4(rgb[i], 1.0);
+      return;
+    }
+  }
+  for (int i = 0; i < CANDIDATES; ++i) {
+    if (state[i] == 1) {
+      out_color = vec4(rgb[i], 1.0);
+      return;
+    }
+  }
+  discard;
+#endif
 }
 )";
+
+}  // namespace
+
+std::string CylinderFragment(int candidates, bool visibility) {
+  return "#version 330 core\n#define CANDIDATES " + std::to_string(candidates) +
+         "\n#define VISIBILITY " + (visibility ? "1" : "0") + "\n" + kCylinderFragmentBody;
+}
 
 const char* const kFloorVertex = R"(#version 330 core
 layout(location = 0) in vec3 a_position;

@@ -45,9 +45,9 @@ ReferencePart HeadOn(const Eigen::Vector3d& a, double length, double radius) {
 // stored projection by (200 tx, 200 ty) pixels.
 ReferencePart TexturedHeadOn(const ReferenceCrop* crop, int frame, double tx, double ty) {
   ReferencePart part = HeadOn(Eigen::Vector3d(0.02, -0.01, 1.0), 0.5, 0.15);
-  part.crop = crop;
-  part.stored_frame = frame;
-  part.stored_from_viewer.block<3, 1>(0, 3) = Eigen::Vector3d(tx, ty, 0.0);
+  ReferenceCandidate candidate{crop, frame, Eigen::Matrix4d::Identity(), 1.0};
+  candidate.stored_from_viewer.block<3, 1>(0, 3) = Eigen::Vector3d(tx, ty, 0.0);
+  part.candidates.push_back(candidate);
   return part;
 }
 
@@ -201,11 +201,9 @@ TEST(ReferenceRenderer, NearerPartWinsWhateverTheDrawOrder) {
   const PinholeCamera cam = ViewerCamera();
   // A small near cylinder in front of a large far one, both head-on, identity mapping.
   ReferencePart near = HeadOn(Eigen::Vector3d(0.02, -0.01, 1.0), 0.3, 0.1);
-  near.crop = &red;
-  near.stored_frame = 1;
+  near.candidates.push_back({&red, 1, Eigen::Matrix4d::Identity(), 1.0});
   ReferencePart far = HeadOn(Eigen::Vector3d(0.04, -0.02, 2.0), 0.3, 0.4);  // same centre
-  far.crop = &blue;
-  far.stored_frame = 2;
+  far.candidates.push_back({&blue, 2, Eigen::Matrix4d::Identity(), 1.0});
   const std::vector<ReferencePart> near_first = {near, far}, far_first = {far, near};
   const ReferenceRender a = RenderReference(cam, near_first);
   const ReferenceRender b = RenderReference(cam, far_first);
@@ -229,8 +227,7 @@ TEST(ReferenceRenderer, NearerPartWinsWhateverTheDrawOrder) {
 TEST(ReferenceRenderer, PartsBehindTheViewerDrawNothingAndCrossingPartsAreClipped) {
   const ReferenceCrop crop = PositionCodedCrop();
   ReferencePart behind = HeadOn(Eigen::Vector3d(0, 0, -2.0), 1.0, 0.3);
-  behind.crop = &crop;
-  behind.stored_frame = 0;
+  behind.candidates.push_back({&crop, 0, Eigen::Matrix4d::Identity(), 1.0});
   const std::vector<ReferencePart> only_behind = {behind};
   EXPECT_EQ(MaskCount(RenderReference(ViewerCamera(), only_behind)), 0);
 
@@ -253,7 +250,7 @@ TEST(ReferenceRenderer, SurfaceBehindTheStoredCameraIsDiscarded) {
   const ReferenceCrop crop = PositionCodedCrop();
   ReferencePart part = TexturedHeadOn(&crop, 0, 0, 0);
   // Turn half way about y: the stored points land at z < 0.
-  part.stored_from_viewer.topLeftCorner<3, 3>() =
+  part.candidates[0].stored_from_viewer.topLeftCorner<3, 3>() =
       Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitY()).toRotationMatrix();
   const std::vector<ReferencePart> parts = {part};
   EXPECT_EQ(MaskCount(RenderReference(ViewerCamera(), parts)), 0);
@@ -334,7 +331,7 @@ TEST(ReferenceRenderer, RejectsANonFiniteAxis) {
 
 TEST(ReferenceRenderer, RejectsAStoredFrameWithoutACrop) {
   ReferencePart part = HeadOn(Eigen::Vector3d(0, 0, 1), 0.5, 0.1);
-  part.stored_frame = 4;
+  part.candidates.push_back({nullptr, 4, Eigen::Matrix4d::Identity(), 1.0});
   const std::vector<ReferencePart> parts = {part};
   EXPECT_THROW(RenderReference(ViewerCamera(), parts), CheckError);
 }

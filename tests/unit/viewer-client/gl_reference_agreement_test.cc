@@ -13,6 +13,7 @@
 #include "capture-client/record/clip_recorder.h"
 #include "capture-client/source/synthetic_source.h"
 #include "common/render/reference_renderer.h"
+#include "common/texture/texture_mapping.h"
 #include "proto/clip/clip_directory.h"
 #include "viewer-client/play/reenactment.h"
 #include "viewer-client/play/viewer_camera.h"
@@ -87,7 +88,7 @@ TEST_P(GlReferenceAgreement, ReenactedFrameAgreesWithTheCpuReference) {
     auto it = texture_of_frame.find(n);
     if (it == texture_of_frame.end()) {
       const StoredTexture t = clip.Texture(n);
-      crop_of_frame[n] = ReferenceCrop{t.color, t.mask, t.camera};
+      crop_of_frame[n] = ReferenceCrop{t.color, t.mask, t.camera, t.part_labels, t.depth_m};
       it = texture_of_frame.emplace(n, renderer->UploadTexture(t)).first;
     }
     return it->second;
@@ -110,11 +111,12 @@ TEST_P(GlReferenceAgreement, ReenactedFrameAgreesWithTheCpuReference) {
     for (const CylinderDraw& c : frame.draw.cylinders) {
       ReferencePart part;
       part.cylinder = Cylinder{c.a, c.b, c.radius};
-      part.stored_from_viewer = c.stored_from_viewer;
       part.color = c.color;
-      if (c.texture >= 0) {
-        part.stored_frame = frame_of_texture.at(c.texture);
-        part.crop = &crop_of_frame.at(part.stored_frame);
+      part.part = c.part;
+      part.texturing = c.texturing;
+      for (const TextureCandidate& t : c.candidates) {
+        const int n = frame_of_texture.at(t.texture);
+        part.candidates.push_back({&crop_of_frame.at(n), n, t.stored_from_viewer, t.weight});
       }
       parts.push_back(part);
     }
@@ -129,6 +131,105 @@ TEST_P(GlReferenceAgreement, ReenactedFrameAgreesWithTheCpuReference) {
 }
 
 INSTANTIATE_TEST_SUITE_P(OrbitAngles, GlReferenceAgreement, ::testing::Values(0.0, 60.0, 150.0));
+
+// The occlusion-aware modes (common/render/texturing.h): every cylinder gets three
+// candidates, Eq. 5's frame and two others of the clip, weights 1, 2, 3, each stored frame
+// uploaded with its part-label map and depth (Reenactment::Texture).
+struct ModeCase {
+  TexturingMode mode;
+  double angle_deg;
+};
+
+class GlReferenceModeAgreement : public ::testing::TestWithParam<ModeCase> {};
+
+TEST_P(GlReferenceModeAgreement, CandidatesAndVisibilityAgreeWithTheCpuReference) {
+  const Reenactment& clip = RecordedClip();
+  ASSERT_EQ(clip.frame_count(), 60);
+  Expected<Renderer> renderer = Renderer::CreateHeadless(kWidth, kHeight);
+  ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+
+  std::map<int, int> texture_of_frame, frame_of_texture;
+  std::map<int, ReferenceCrop> crop_of_frame;
+  auto texture_for_frame = [&](int n) {
+    auto it = texture_of_frame.find(n);
+    if (it == texture_of_frame.end()) {
+      const StoredTexture t = clip.Texture(n);
+      EXPECT_FALSE(t.part_labels.empty());
+      EXPECT_FALSE(t.depth_m.empty());
+      crop_of_frame[n] = ReferenceCrop{t.color, t.mask, t.camera, t.part_labels, t.depth_m};
+      it = texture_of_frame.emplace(n, renderer->UploadTexture(t)).first;
+      frame_of_texture[it->second] = n;
+    }
+    return it->second;
+  };
+
+  OrbitCameraOptions orbit;
+  orbit.angle_deg = GetParam().angle_deg;
+  const auto view = OrbitViewFor(clip, orbit);
+  ASSERT_TRUE(view.has_value());
+  const PinholeCamera camera = ScaledViewerCamera(clip.manifest().color_camera, kWidth, kHeight);
+  for (int k : {10, 55}) {
+    ReenactedFrame frame = clip.Build(k, camera, view->viewer_from_world, texture_for_frame);
+    frame.draw.bones.clear();
+    ASSERT_GE(frame.texture_frame, 0);
+    const int n0 = frame.texture_frame;
+    const std::vector<int> stored_frames = {n0, (n0 + 20) % 60, (n0 + 40) % 60};
+    for (CylinderDraw& c : frame.draw.cylinders) {
+      c.texturing = GetParam().mode;
+      c.candidates.clear();
+      const auto [ja, jb] = PartJoints(c.part);
+      for (size_t i = 0; i < stored_frames.size(); ++i) {
+        const proto::ClipFrame& f = clip.frame(stored_frames[i]);
+        const Skeleton stored = f.skeleton_in_world.Transformed(f.world_from_sensor.inverse());
+        if (!stored.HasPart(c.part)) continue;
+        if (auto m = StoredFromViewerMapping(c.a, c.b, stored[ja], stored[jb]))
+          c.candidates.push_back({texture_for_frame(stored_frames[i]), *m, 1.0 + i});
+      }
+    }
+    const RenderedFrame gl = renderer->Render(frame.draw);
+
+    std::vector<ReferencePart> parts;
+    for (const CylinderDraw& c : frame.draw.cylinders) {
+      ReferencePart part;
+      part.cylinder = Cylinder{c.a, c.b, c.radius};
+      part.color = c.color;
+      part.part = c.part;
+      part.texturing = c.texturing;
+      for (const TextureCandidate& t : c.candidates) {
+        const int n = frame_of_texture.at(t.texture);
+        part.candidates.push_back({&crop_of_frame.at(n), n, t.stored_from_viewer, t.weight});
+      }
+      parts.push_back(part);
+    }
+    const ReferenceRender ref = RenderReference(camera, parts);
+
+    // The modes must act: pixels coloured past candidate 0, or blended.
+    int past_first = 0, blended = 0;
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x) {
+        past_first += ref.source_frame.at(x, y, 0) >= 0 && ref.source_frame.at(x, y, 0) != n0;
+        blended += ref.source_frame.at(x, y, 1) >= 0;
+      }
+    if (GetParam().mode == TexturingMode::kBlendVisible) {
+      EXPECT_GT(blended, 500) << "k " << k;
+    } else {
+      EXPECT_GT(past_first, 200) << "k " << k;
+      EXPECT_EQ(blended, 0);
+    }
+    const Agreement a = Compare(gl, ref);
+    EXPECT_GT(a.both, 5000) << "k " << k;
+    EXPECT_GT(a.textured, a.both / 2) << "k " << k;
+    EXPECT_GE(a.iou, 0.98) << "k " << k;
+    EXPECT_LE(a.colour_mae, 2.0) << "k " << k;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Modes, GlReferenceModeAgreement,
+    ::testing::Values(ModeCase{TexturingMode::kFirstVisible, 0.0},
+                      ModeCase{TexturingMode::kFirstVisible, 90.0},
+                      ModeCase{TexturingMode::kBlendVisible, 0.0},
+                      ModeCase{TexturingMode::kBlendVisible, 90.0}));
 
 }  // namespace
 }  // namespace reenact::viewer

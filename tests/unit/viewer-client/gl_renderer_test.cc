@@ -68,9 +68,10 @@ constexpr int kShiftU = 10, kShiftV = -5;
 
 CylinderDraw TexturedHeadOn(int texture) {
   CylinderDraw c = HeadOn(Eigen::Vector3d(0.02, -0.01, 1.0), 0.5, 0.15, {1, 0, 0});
-  c.texture = texture;
-  c.stored_from_viewer = Eigen::Matrix4d::Identity();
-  c.stored_from_viewer.block<3, 1>(0, 3) = Eigen::Vector3d(0.05, -0.025, 0.0);
+  TextureCandidate t;
+  t.texture = texture;
+  t.stored_from_viewer.block<3, 1>(0, 3) = Eigen::Vector3d(0.05, -0.025, 0.0);
+  c.candidates.push_back(t);
   return c;
 }
 
@@ -305,7 +306,7 @@ TEST(GlRenderer, RejectsATextureIndexThatWasNeverUploaded) {
   Renderer renderer = MakeRenderer();
   FrameDraw frame = BlackFrame();
   frame.cylinders.push_back(HeadOn(Eigen::Vector3d(0, 0, 1.0), 0.3, 0.1, {0, 1, 0}));
-  frame.cylinders.back().texture = 0;
+  frame.cylinders.back().candidates.push_back({0, Eigen::Matrix4d::Identity(), 1.0});
   EXPECT_THROW(renderer.Render(frame), CheckError);
 }
 
@@ -315,6 +316,32 @@ TEST(GlRenderer, RejectsAMaskOfAnotherSize) {
   crop.mask = ImageGray8(7, 8, 1, 255);
   EXPECT_THROW(renderer.UploadTexture(crop), CheckError);
   EXPECT_EQ(renderer.texture_count(), 0u);
+}
+
+TEST(GlRenderer, RejectsPartLabelsOrDepthOfAnotherSize) {
+  Renderer renderer = MakeRenderer();
+  StoredTexture labels = PositionCodedCrop(ViewerCamera(), 0, 0, 8, 8);
+  labels.part_labels = ImageLabel8(8, 7, 1, 1);
+  EXPECT_THROW(renderer.UploadTexture(labels), CheckError);
+  StoredTexture depth = PositionCodedCrop(ViewerCamera(), 0, 0, 8, 8);
+  depth.depth_m = Image<float>(8, 8, 2, 1.0f);
+  EXPECT_THROW(renderer.UploadTexture(depth), CheckError);
+  EXPECT_EQ(renderer.texture_count(), 0u);
+}
+
+TEST(GlRenderer, RejectsTooManyCandidatesANegativeWeightOrTolerance) {
+  Renderer renderer = MakeRenderer();
+  renderer.UploadTexture(PositionCodedCrop(ViewerCamera(), 0, 0, 8, 8));
+  FrameDraw frame = BlackFrame();
+  frame.cylinders.push_back(HeadOn(Eigen::Vector3d(0, 0, 1.0), 0.3, 0.1, {0, 1, 0}));
+  frame.cylinders.back().candidates.assign(kMaxTextureCandidates + 1,
+                                           {0, Eigen::Matrix4d::Identity(), 1.0});
+  EXPECT_THROW(renderer.Render(frame), CheckError);
+  frame.cylinders.back().candidates = {{0, Eigen::Matrix4d::Identity(), -1.0}};
+  EXPECT_THROW(renderer.Render(frame), CheckError);
+  frame.cylinders.back().candidates = {{0, Eigen::Matrix4d::Identity(), 1.0}};
+  frame.depth_tolerance_m = -0.01;
+  EXPECT_THROW(renderer.Render(frame), CheckError);
 }
 
 TEST(GlRenderer, RejectsABackgroundOfAnotherSize) {

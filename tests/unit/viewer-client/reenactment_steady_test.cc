@@ -63,7 +63,7 @@ TEST(ReenactmentSteady, SteadyMotionPosesTheFlaggedFrameFromItsNeighbours) {
   // BuildPosed with the steady skeleton is what Build does with the option on.
   const ReenactedFrame posed =
       r.BuildPosed(4, r.SteadySkeletonInWorld(4), PinholeCamera::KinectLike(),
-                   Eigen::Isometry3d::Identity(), [](int n) { return n; });
+                   Eigen::Isometry3d::Identity(), [](int n) { return n; }, r.options().texturing);
   EXPECT_NEAR(HeadX(posed), still, 1e-12);
 }
 

@@ -38,8 +38,9 @@ TEST(Reenactment, ViewerAtTheSensorReusesTheSameFrameWithIdentityMapping) {
     EXPECT_EQ(f.texture_frame, k);
     ASSERT_EQ(f.draw.cylinders.size(), static_cast<size_t>(kBodyPartCount));
     for (const CylinderDraw& c : f.draw.cylinders) {
-      EXPECT_EQ(c.texture, k);
-      EXPECT_LT((c.stored_from_viewer - Eigen::Matrix4d::Identity()).norm(), 1e-9);
+      ASSERT_EQ(c.candidates.size(), 1u);
+      EXPECT_EQ(c.candidates[0].texture, k);
+      EXPECT_LT((c.candidates[0].stored_from_viewer - Eigen::Matrix4d::Identity()).norm(), 1e-9);
     }
   }
 }

@@ -1,0 +1,32 @@
+#include "viewer-client/play/texturing_presets.h"
+
+#include <gtest/gtest.h>
+
+namespace reenact::viewer {
+namespace {
+
+TEST(TexturingPresets, EachAddsOneStepAndAllPassCheck) {
+  const TexturingOptions thesis = TexturingPreset("thesis").value();
+  EXPECT_EQ(thesis.selection, TextureSelection::kWholeBody);
+  EXPECT_EQ(thesis.mode, TexturingMode::kFirst);
+  const TexturingOptions per_part = TexturingPreset("per-part").value();
+  EXPECT_EQ(per_part.selection, TextureSelection::kPerPart);
+  EXPECT_EQ(per_part.mode, TexturingMode::kFirst);
+  const TexturingOptions occlusion = TexturingPreset("occlusion").value();
+  EXPECT_EQ(occlusion.mode, TexturingMode::kFirstVisible);
+  EXPECT_GT(occlusion.candidates, 1);
+  const TexturingOptions blend = TexturingPreset("blend").value();
+  EXPECT_EQ(blend.mode, TexturingMode::kBlendVisible);
+  EXPECT_GT(blend.hysteresis, 0.0);
+  for (const TexturingOptions& o : {thesis, per_part, occlusion, blend}) EXPECT_NO_THROW(o.Check());
+}
+
+TEST(TexturingPresets, UnknownNameIsAUsageErrorListingTheKnownOnes) {
+  const auto r = TexturingPreset("Blend");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, "usage");
+  EXPECT_NE(r.error().message.find("thesis, per-part, occlusion, blend"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace reenact::viewer

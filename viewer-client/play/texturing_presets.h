@@ -1,0 +1,24 @@
+#pragma once
+// Named texturing settings (reenactment.h's TexturingOptions), each adding one step of issue 9
+// to the one before; `reenact-viewer play --texturing NAME` and `reenact-eval quality`'s
+// methods use the same names:
+//   thesis     whole-body Eq. 5, one frame, no occlusion handling
+//   per-part   per-part selection (common/texture/part_selection.h), one frame per part
+//   occlusion  per-part, the 3 best frames per part, the first visible one per fragment
+//   blend      per-part, the visible ones of the 3 best blended by weight, hysteresis 0.1
+
+#include <string>
+#include <string_view>
+
+#include "common/error/expected.h"
+#include "viewer-client/play/reenactment.h"
+
+namespace reenact::viewer {
+
+// The names above, in that order, comma separated (for usage messages).
+std::string TexturingPresetNames();
+
+// The preset of that name; error "usage" naming the known presets otherwise.
+Expected<TexturingOptions> TexturingPreset(std::string_view name);
+
+}  // namespace reenact::viewer
