@@ -49,6 +49,8 @@ void SkeletonTrackerOptions::Check() const {
   REENACT_CHECK(start_without_calibration_after >= -1,
                 "start_without_calibration_after must be >= -1");
   REENACT_CHECK(heading_candidates >= 1, "heading_candidates must be >= 1");
+  extremities.Check();
+  REENACT_CHECK(extremity_min_offset_m >= 0, "extremity_min_offset_m must be >= 0");
   REENACT_CHECK(travel_window_frames >= 2 && travel_min_m > 0,
                 "travel_window_frames must be >= 2 and travel_min_m > 0");
   REENACT_CHECK(travel_flip_cos >= -1 && travel_flip_cos <= 1, "travel_flip_cos in [-1, 1]");
@@ -130,7 +132,9 @@ BodyFitResult SkeletonTracker::Refine(BodyFitResult fit, const BodyObservation& 
 }
 
 std::optional<BodyFitResult> SkeletonTracker::Recover(const PersonBlob& blob,
-                                                      const BodyObservation& obs) {
+                                                      const BodyObservation& obs,
+                                                      bool* from_extremities) {
+  if (from_extremities) *from_extremities = false;
   // From the calibration pose, when shown.
   const CalibrationPoseTest test = TestCalibrationPose(blob, options_.calibration);
   BodyFitOptions fit = options_.fit;
@@ -146,14 +150,21 @@ std::optional<BodyFitResult> SkeletonTracker::Recover(const PersonBlob& blob,
   if (headings.empty()) return std::nullopt;
   if (has_previous_)
     if (auto f = HorizontalForward(pose_, blob.floor_in_sensor->normal)) headings.push_back(*f);
-  std::optional<BodyFitResult> best = BestHeading(blob, obs, headings);
+  std::optional<GeodesicExtremities> extremities;
+  if (options_.recover_from_extremities && state_ == TrackState::kLost)
+    extremities = FindGeodesicExtremities(blob.points, blob.floor_in_sensor, options_.extremities);
+  std::optional<BodyFitResult> best =
+      BestHeading(blob, obs, headings, extremities ? &*extremities : nullptr, from_extremities);
   if (best && Good(*best)) return best;
+  if (from_extremities) *from_extremities = false;
   return std::nullopt;
 }
 
 std::optional<BodyFitResult> SkeletonTracker::BestHeading(
     const PersonBlob& blob, const BodyObservation& obs,
-    const std::vector<Eigen::Vector3d>& headings) const {
+    const std::vector<Eigen::Vector3d>& headings, const GeodesicExtremities* extremities,
+    bool* from_extremities) const {
+  if (from_extremities) *from_extremities = false;
   if (!blob.floor_in_sensor) return std::nullopt;
   const Eigen::Vector3d up = blob.floor_in_sensor->normal;
   const Eigen::Vector3d ground =
@@ -164,7 +175,20 @@ std::optional<BodyFitResult> SkeletonTracker::BestHeading(
   for (const Eigen::Vector3d& forward : headings) {
     const ArticulatedPose start = UprightPose(*body_, ground, up, forward);
     BodyFitResult r = Refine(FitBody(*body_, start, obs, fit, options_.limits), obs);
-    if (!best || r.cost < best->cost) best = std::move(r);
+    if (!best || r.cost < best->cost) {
+      best = std::move(r);
+      if (from_extremities) *from_extremities = false;
+    }
+    if (!extremities) continue;
+    int placed = 0;
+    const ArticulatedPose reach = PoseFromExtremities(*body_, start, *extremities, options_.limits,
+                                                      &placed, options_.extremity_min_offset_m);
+    if (placed == 0) continue;
+    BodyFitResult e = Refine(FitBody(*body_, reach, obs, fit, options_.limits), obs);
+    if (e.cost < best->cost) {
+      best = std::move(e);
+      if (from_extremities) *from_extremities = true;
+    }
   }
   return best;
 }
@@ -265,7 +289,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
       const BodyObservation obs =
           MakeObservation(camera_, blob.grid_step_px, blob.mask, blob.depth_m, blob.points,
                           blob.pixels, options_.subsample);
-      auto r = Recover(blob, obs);
+      auto r = Recover(blob, obs, &out.from_extremities);
       if (!r) {
         body_.reset();
         out.state = state_;
@@ -295,7 +319,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
                                         blob.points, blob.pixels, options_.subsample);
   out.points = static_cast<int>(obs.points.size());
   if (state_ == TrackState::kLost) {
-    auto r = Recover(blob, obs);
+    auto r = Recover(blob, obs, &out.from_extremities);
     if (!r) {
       out.state = state_;
       return out;

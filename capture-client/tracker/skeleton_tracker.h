@@ -28,7 +28,12 @@
 //    again) or from the silhouette: the calibrated body placed upright on the blob (the
 //    waist above the floor under the blob's centroid, arms and legs straight down) facing
 //    the sensor, away from it, to either side and at the last tracked heading, each fitted
-//    with recovery_iterations; the best fit is taken when it is good.
+//    with recovery_iterations; and, with recover_from_extremities, the same headings with
+//    the limbs re-posed to reach the geodesic extremities of the region (hands and feet,
+//    geodesic_extremities.h and extremity_pose.h: a raised arm, arms out), each fitted
+//    alike; the best fit of all is taken when it is good. The start without the
+//    calibration pose tries the upright starts only (on the bvh: walk, seen from the side at
+//    4 m, the extremity starts won with poses that tracked worse).
 // Per-joint confidence: each segment's inlier points over the points its capsules would show
 // if unoccluded (BodyFitResult::support / expected_support), divided by full_support_ratio
 // and clamped to [min_confidence, 1]; a joint takes the best of its adjacent segments.
@@ -41,6 +46,8 @@
 #include "capture-client/tracker/articulated_body.h"
 #include "capture-client/tracker/body_calibration.h"
 #include "capture-client/tracker/body_fit.h"
+#include "capture-client/tracker/extremity_pose.h"
+#include "capture-client/tracker/geodesic_extremities.h"
 #include "capture-client/tracker/heading.h"
 #include "capture-client/tracker/limb_search.h"
 #include "capture-client/tracker/person_detector.h"
@@ -70,6 +77,13 @@ struct SkeletonTrackerOptions {
   int lost_after_frames = 3;            // >= 1
   int recovery_iterations = 12;         // >= 1
   bool recover_from_silhouette = true;  // else only the calibration pose recovers
+  // Recovery of a lost track also from the region's geodesic extremities (limbs reaching
+  // them), see above.
+  bool recover_from_extremities = true;
+  GeodesicExtremityOptions extremities;
+  // A limb is re-posed to its extremity only when the upright start's limb end lies farther
+  // than this from it (metres, >= 0; extremity_pose.h's min_offset_m).
+  double extremity_min_offset_m = 0.25;
   // Frames with a detected person, without the calibration pose, after which tracking starts
   // with average proportions; -1 = never (wait for the calibration pose). >= -1.
   int start_without_calibration_after = 15;
@@ -112,6 +126,8 @@ struct TrackFrameResult {
   std::optional<Skeleton> skeleton;  // sensor frame; none while waiting or lost
   bool calibrated = false;           // calibrated on this frame
   bool recovered = false;            // recovered from a loss on this frame
+  // The recovery's (or the start's) pose came from the extremity hypothesis.
+  bool from_extremities = false;
   bool good_fit = false;
   double inlier_share = 0, outlier_share = 0;
   double coverage = 0;  // BodyFitResult::coverage
@@ -140,14 +156,19 @@ class SkeletonTracker {
   Skeleton WithConfidence(const BodyFitResult& fit, bool good) const;
   bool Good(const BodyFitResult& fit) const;
   BodyFitResult Refine(BodyFitResult fit, const BodyObservation& obs) const;
-  // The best-costing fit of upright starts facing each of `headings` on the blob's floor.
+  // The best-costing fit of upright starts facing each of `headings` on the blob's floor,
+  // and, given extremities, of the same starts with the limbs reaching them
+  // (*from_extremities: whether such a start won).
   std::optional<BodyFitResult> BestHeading(const PersonBlob& blob, const BodyObservation& obs,
-                                           const std::vector<Eigen::Vector3d>& headings) const;
+                                           const std::vector<Eigen::Vector3d>& headings,
+                                           const GeodesicExtremities* extremities = nullptr,
+                                           bool* from_extremities = nullptr) const;
   // The travel check of the options (front = direction of travel); returns the fit to keep.
   BodyFitResult CheckTravelHeading(BodyFitResult fit, const PersonBlob& blob,
                                    const BodyObservation& obs,
                                    const std::optional<Eigen::Isometry3d>& world_from_sensor);
-  std::optional<BodyFitResult> Recover(const PersonBlob& blob, const BodyObservation& obs);
+  std::optional<BodyFitResult> Recover(const PersonBlob& blob, const BodyObservation& obs,
+                                       bool* from_extremities = nullptr);
 
   PersonDetector detector_;
   PinholeCamera camera_;
