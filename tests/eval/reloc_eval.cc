@@ -65,6 +65,7 @@ struct FrameOutcome {
   bool posed = false;
   double err_cm = 0, err_deg = 0;
   double ms = 0;
+  viewer::RelocStageTimes cpu;
 };
 
 std::vector<RelocEvalRow> Rows(const std::string& method, const std::vector<FrameOutcome>& out,
@@ -87,7 +88,7 @@ std::vector<RelocEvalRow> Rows(const std::string& method, const std::vector<Fram
     RelocEvalRow row;
     row.method = method;
     row.band = bands[b].name;
-    std::vector<double> cm, deg, ms;
+    std::vector<double> cm, deg, ms, cpu, orb, subpixel, match, refine, reloc, smooth, comparisons;
     int within = 0, posed = 0;
     for (const FrameOutcome& f : out) {
       const double a = std::abs(f.angle_deg);
@@ -95,6 +96,14 @@ std::vector<RelocEvalRow> Rows(const std::string& method, const std::vector<Fram
       if (!in) continue;
       ++row.frames;
       ms.push_back(f.ms);
+      cpu.push_back(f.cpu.total_ms);
+      orb.push_back(f.cpu.orb.detect_ms);
+      subpixel.push_back(f.cpu.orb.subpixel_ms);
+      match.push_back(f.cpu.match_ms);
+      refine.push_back(f.cpu.refine_ms);
+      reloc.push_back(f.cpu.relocalise_ms);
+      smooth.push_back(f.cpu.smooth_ms);
+      comparisons.push_back(static_cast<double>(f.cpu.matching.comparisons));
       if (!f.posed) continue;
       ++posed;
       cm.push_back(f.err_cm);
@@ -108,6 +117,14 @@ std::vector<RelocEvalRow> Rows(const std::string& method, const std::vector<Fram
     row.median_err_deg = Quantile(deg, 0.5);
     row.ms_per_frame = Quantile(ms, 0.5);
     row.p99_ms = Quantile(ms, 0.99);
+    row.cpu_ms = Quantile(cpu, 0.5);
+    row.orb_ms = Quantile(orb, 0.5);
+    row.subpixel_ms = Quantile(subpixel, 0.5);
+    row.match_ms = Quantile(match, 0.5);
+    row.refine_ms = Quantile(refine, 0.5);
+    row.reloc_ms = Quantile(reloc, 0.5);
+    row.smooth_ms = Quantile(smooth, 0.5);
+    row.comparisons = Quantile(comparisons, 0.5);
     rows.push_back(row);
   }
   return rows;
@@ -120,6 +137,7 @@ void RelocEvalOptions::Check() const {
   REENACT_CHECK(viewer_frames == 0 || viewer_frames >= 2, "viewer_frames must be 0 or >= 2");
   REENACT_CHECK(std::isfinite(max_deg) && max_deg > 0 && max_deg <= 90, "max_deg in (0, 90]");
   REENACT_CHECK(record_frames == -1 || record_frames >= 1, "record_frames must be -1 or >= 1");
+  REENACT_CHECK(run_track || run_reloc, "at least one method must run");
   relocaliser.Check();
 }
 
@@ -148,11 +166,13 @@ Expected<RelocEvalRun> RunRelocEval(const RelocEvalOptions& options) {
     const cv::Mat gray = Gray(scene->Render(k % scene->frame_count(), camera, truth).color);
     fresh_start->Reset();
     for (viewer::Relocaliser* r : {&*tracker, &*fresh_start}) {
+      if (!(r == &*tracker ? options.run_track : options.run_reloc)) continue;
       const auto result = r->ProcessFrame(gray);
       if (!result.ok()) return result.error();
       FrameOutcome f;
       f.angle_deg = trajectory.angle_deg[k];
       f.ms = result->ms;
+      f.cpu = result->cpu;
       if (result->viewer_from_world) {
         const Eigen::Isometry3d estimate = result->viewer_from_world->inverse();
         f.posed = true;
@@ -163,9 +183,14 @@ Expected<RelocEvalRun> RunRelocEval(const RelocEvalOptions& options) {
       (r == &*tracker ? tracked : fresh).push_back(f);
     }
   }
-  for (auto& rows :
-       {Rows("track", tracked, options.max_deg), Rows("reloc", fresh, options.max_deg)})
+  if (options.run_track) {
+    const auto rows = Rows("track", tracked, options.max_deg);
     run.rows.insert(run.rows.end(), rows.begin(), rows.end());
+  }
+  if (options.run_reloc) {
+    const auto rows = Rows("reloc", fresh, options.max_deg);
+    run.rows.insert(run.rows.end(), rows.begin(), rows.end());
+  }
   return run;
 }
 
@@ -182,14 +207,22 @@ proto::Report RelocReport(const RelocEvalRun& run) {
         .Add("median_err_cm", r.median_err_cm)
         .Add("median_err_deg", r.median_err_deg)
         .Add("ms_per_frame", r.ms_per_frame)
-        .Add("p99_ms", r.p99_ms);
+        .Add("p99_ms", r.p99_ms)
+        .Add("cpu_ms", r.cpu_ms)
+        .Add("orb_ms", r.orb_ms)
+        .Add("subpixel_ms", r.subpixel_ms)
+        .Add("match_ms", r.match_ms)
+        .Add("refine_ms", r.refine_ms)
+        .Add("reloc_ms", r.reloc_ms)
+        .Add("smooth_ms", r.smooth_ms)
+        .Add("comparisons", r.comparisons);
     report.rows.push_back(std::move(row));
   }
   return report;
 }
 
 std::set<std::string> RelocFlags() {
-  return {"scenario", "body", "frames", "max-deg", "record-frames", "features", "json"};
+  return {"scenario", "body", "frames", "max-deg", "record-frames", "features", "methods", "json"};
 }
 
 Expected<RelocCommand> ParseRelocCommand(const CommandLine& cl) {
@@ -224,6 +257,12 @@ Expected<RelocCommand> ParseRelocCommand(const CommandLine& cl) {
     return MakeError("usage", "--features must be a whole number in [100, 100000], got " +
                                   std::to_string(*features));
   o.relocaliser.features.num_features = static_cast<int>(*features);
+  if (auto m = cl.Get("methods")) {
+    if (*m != "track" && *m != "reloc" && *m != "both")
+      return MakeError("usage", "--methods must be track, reloc or both, got '" + *m + "'");
+    o.run_track = *m != "reloc";
+    o.run_reloc = *m != "track";
+  }
   if (auto path = cl.Get("json")) {
     if (Status s = CheckWritableFile("json", *path); !s.ok()) return s.error();
     command.json_path = *path;

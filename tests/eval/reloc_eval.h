@@ -3,7 +3,8 @@
 // ground truth.
 //
 //   reenact-eval reloc [--scenario S] [--body FILE.glb] [--frames N] [--max-deg D]
-//                      [--record-frames M] [--features F] [--json FILE]
+//                      [--record-frames M] [--features F] [--methods track|reloc|both]
+//                      [--json FILE]
 //
 // 1. The scenario is recorded through the real capture pipeline (RecordClip on its synthetic
 //    source, the first M frames, default all), and the clip's map is read back from the clip
@@ -27,7 +28,11 @@
 // centre) and 1 degree (rotation angle) of the truth; a lost frame counts as outside),
 // tracked_rate (share with a pose), median_err_cm and median_err_deg (over frames with a
 // pose), ms_per_frame (median wall time of Relocaliser::ProcessFrame; rendering excluded)
-// and p99_ms.
+// and p99_ms, and the median CPU time per frame (RelocFrameResult::cpu: the process's CPU
+// time, steadier than wall time on a shared machine) in all and per stage: cpu_ms,
+// orb_ms (OpenCV's ORB: pyramid, FAST, Harris, orientation, descriptors), subpixel_ms,
+// match_ms (by projection), refine_ms, reloc_ms (descriptor search and RANSAC), smooth_ms, and
+// the median descriptor comparisons per frame of matching by projection.
 
 #include <optional>
 #include <set>
@@ -48,6 +53,7 @@ struct RelocEvalOptions {
   double max_deg = 45;     // D, in (0, 90]
   int record_frames = -1;  // M, frames recorded for the map; -1 = all, else >= 1
   viewer::RelocaliserOptions relocaliser;
+  bool run_track = true, run_reloc = true;  // the methods run, at least one
 
   void Check() const;
 };
@@ -60,6 +66,10 @@ struct RelocEvalRow {
   double tracked_rate = 0;
   double median_err_cm = 0, median_err_deg = 0;
   double ms_per_frame = 0, p99_ms = 0;
+  // Medians of the CPU time per frame and stage, milliseconds.
+  double cpu_ms = 0, orb_ms = 0, subpixel_ms = 0, match_ms = 0, refine_ms = 0, reloc_ms = 0,
+         smooth_ms = 0;
+  double comparisons = 0;  // median descriptor comparisons per frame (matching by projection)
 };
 
 struct RelocEvalRun {
@@ -72,7 +82,8 @@ struct RelocEvalRun {
 Expected<RelocEvalRun> RunRelocEval(const RelocEvalOptions& options);
 
 // Command "reloc": method, band, n, within_2cm_1deg, tracked_rate, median_err_cm,
-// median_err_deg, ms_per_frame, p99_ms.
+// median_err_deg, ms_per_frame, p99_ms, cpu_ms, orb_ms, subpixel_ms, match_ms, refine_ms,
+// reloc_ms, smooth_ms, comparisons.
 proto::Report RelocReport(const RelocEvalRun& run);
 
 struct RelocCommand {
@@ -84,7 +95,7 @@ std::set<std::string> RelocFlags();
 
 // Errors (code "usage", naming the flag): --frames not a whole number >= 2, --max-deg not a
 // number in (0, 90], --record-frames not a whole number >= 1, --features not a whole number in
-// [100, 100000], an empty --scenario; (code "io")
+// [100, 100000], --methods not track, reloc or both, an empty --scenario; (code "io")
 // a --json file that cannot be written.
 Expected<RelocCommand> ParseRelocCommand(const CommandLine& command_line);
 

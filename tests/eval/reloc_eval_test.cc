@@ -35,6 +35,15 @@ TEST(RelocCli, DefaultsAndFlags) {
   EXPECT_EQ(r->options.record_frames, 40);
   EXPECT_TRUE(r->options.body.empty());
   EXPECT_EQ(r->options.relocaliser.features.num_features, 1500);
+  EXPECT_TRUE(d->options.run_track && d->options.run_reloc);
+  const auto t = Parse({"--methods", "track"});
+  ASSERT_TRUE(t.ok()) << t.error().message;
+  EXPECT_TRUE(t->options.run_track);
+  EXPECT_FALSE(t->options.run_reloc);
+  const auto f = Parse({"--methods", "reloc"});
+  ASSERT_TRUE(f.ok()) << f.error().message;
+  EXPECT_FALSE(f->options.run_track);
+  EXPECT_TRUE(f->options.run_reloc);
 }
 
 TEST(RelocCli, BadInputIsRefused) {
@@ -46,6 +55,7 @@ TEST(RelocCli, BadInputIsRefused) {
   ExpectUsage({"--features", "50"}, "--features");
   ExpectUsage({"--features", "lots"}, "features");
   ExpectUsage({"--scenario", ""}, "--scenario");
+  ExpectUsage({"--methods", "all"}, "--methods");
   const auto json = Parse({"--json", "/nonexistent-folder/out.json"});
   ASSERT_FALSE(json.ok());
   EXPECT_EQ(json.error().code, "io");
@@ -83,6 +93,16 @@ TEST(RelocEval, ShortRunPosesEveryFrameNearTheCaptureViewpoint) {
     EXPECT_GE(row.within_2cm_1deg, 0.0);
     EXPECT_LE(row.within_2cm_1deg, 1.0);
     EXPECT_GT(row.ms_per_frame, 0.0);
+    // CPU time per stage: each a part of the frame's total (frame by frame, so the medians
+    // keep the order), and every frame extracts and matches.
+    EXPECT_GT(row.orb_ms, 0.0);
+    EXPECT_GT(row.comparisons, 0.0);
+    for (double part :
+         {row.orb_ms, row.subpixel_ms, row.match_ms, row.refine_ms, row.reloc_ms, row.smooth_ms})
+      EXPECT_GE(row.cpu_ms, part);
+    if (row.method == "reloc") {
+      EXPECT_GT(row.reloc_ms, 0.0);
+    }
   }
   EXPECT_EQ(run->rows[0].method, "track");
   EXPECT_EQ(run->rows[0].band, "0-15");

@@ -148,6 +148,7 @@ Expected<RelocFrameResult> Relocaliser::ProcessFrame(const ImageRgb8& image) {
 
 Expected<RelocFrameResult> Relocaliser::ProcessFrame(const cv::Mat& image) {
   const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = vision::CpuMs();
   if (image.empty()) return MakeError("invalid_argument", "the viewer frame is empty");
   if (image.cols != camera_.width || image.rows != camera_.height) {
     return MakeError("invalid_argument",
@@ -167,24 +168,29 @@ Expected<RelocFrameResult> Relocaliser::ProcessFrame(const cv::Mat& image) {
                          std::to_string(image.type()) + " given)");
   }
   ++frames_;
-  const vision::FrameFeatures features =
-      vision::ExtractOrbFeatures(gray, no_depth_, 0.001, nullptr, camera_, options_.features);
-  const vision::KeypointGrid grid(features, camera_.width, camera_.height);
-
   RelocFrameResult result;
+  RelocStageTimes& cpu = result.cpu;
+  double t = vision::CpuMs();
+  const vision::FrameFeatures features = vision::ExtractOrbFeatures(
+      gray, no_depth_, 0.001, nullptr, camera_, options_.features, &cpu.orb);
+  cpu.features_ms = vision::CpuMs() - t;
+  t = vision::CpuMs();
+  const vision::KeypointGrid grid(features, camera_.width, camera_.height);
+  cpu.grid_ms = vision::CpuMs() - t;
+
   result.features = static_cast<int>(features.size());
   std::optional<Estimate> estimate;
   if (last_) {
     const Eigen::Isometry3d predicted =
         before_last_ ? Eigen::Isometry3d((*last_) * before_last_->inverse() * (*last_)) : *last_;
-    Estimate tracked = TrackFrom(predicted, features, grid);
+    Estimate tracked = TrackFrom(predicted, features, grid, cpu);
     if (tracked.inliers >= options_.track_min_inliers) {
       estimate = tracked;
       result.status = RelocStatus::kTracked;
     }
   }
   if (!estimate) {
-    estimate = Relocalise(features, grid, result.reason);
+    estimate = Relocalise(features, grid, result.reason, cpu);
     if (estimate) result.status = RelocStatus::kRelocalised;
   }
   if (estimate) {
@@ -193,9 +199,11 @@ Expected<RelocFrameResult> Relocaliser::ProcessFrame(const cv::Mat& image) {
     before_last_ = last_;
     last_ = estimate->viewer_from_world;
     if (options_.smooth) {
+      t = vision::CpuMs();
       if (result.status == RelocStatus::kRelocalised) smoother_.Reset();
       estimate->viewer_from_world =
           smoother_.Update(estimate->viewer_from_world, estimate->information);
+      cpu.smooth_ms = vision::CpuMs() - t;
     }
     result.viewer_from_world = estimate->viewer_from_world;
     result.matches = estimate->matches;
@@ -204,6 +212,7 @@ Expected<RelocFrameResult> Relocaliser::ProcessFrame(const cv::Mat& image) {
     result.status = RelocStatus::kLost;
     Reset();
   }
+  cpu.total_ms = vision::CpuMs() - cpu_start;
   result.ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return result;
@@ -211,7 +220,9 @@ Expected<RelocFrameResult> Relocaliser::ProcessFrame(const cv::Mat& image) {
 
 Relocaliser::Estimate Relocaliser::Refine(const Eigen::Isometry3d& start,
                                           const vision::FrameFeatures& features,
-                                          const std::vector<vision::FeatureMatch>& matches) const {
+                                          const std::vector<vision::FeatureMatch>& matches,
+                                          RelocStageTimes& cpu) const {
+  const double t = vision::CpuMs();
   std::vector<vision::PointObservation> observations;
   observations.reserve(matches.size());
   for (const vision::FeatureMatch& m : matches) {
@@ -220,39 +231,47 @@ Relocaliser::Estimate Relocaliser::Refine(const Eigen::Isometry3d& start,
   }
   const vision::PoseRefinementResult refined = vision::RefinePose(
       start, observations, camera_.fx, camera_.fy, options_.noise, options_.refinement);
+  cpu.refine_ms += vision::CpuMs() - t;
   return {refined.sensor_from_world, static_cast<int>(matches.size()), refined.num_inliers,
           refined.information};
 }
 
 Relocaliser::Estimate Relocaliser::TrackFrom(const Eigen::Isometry3d& predicted,
                                              const vision::FrameFeatures& features,
-                                             const vision::KeypointGrid& grid) const {
+                                             const vision::KeypointGrid& grid,
+                                             RelocStageTimes& cpu) const {
   vision::MatchOptions match;
   match.max_distance = options_.track_max_distance;
   match.ratio = options_.track_ratio;
   match.scale_factor = options_.features.scale_factor;
   match.radius_px = options_.search_radius_px;
-  std::vector<vision::FeatureMatch> matches =
-      vision::MatchByProjection(candidates_, features, grid, predicted, camera_, match);
+  double t = vision::CpuMs();
+  std::vector<vision::FeatureMatch> matches = vision::MatchByProjection(
+      candidates_, features, grid, predicted, camera_, match, nullptr, &cpu.matching);
   if (static_cast<int>(matches.size()) < 2 * options_.track_min_inliers) {
     match.radius_px = options_.wide_search_radius_px;
-    std::vector<vision::FeatureMatch> wide =
-        vision::MatchByProjection(candidates_, features, grid, predicted, camera_, match);
+    std::vector<vision::FeatureMatch> wide = vision::MatchByProjection(
+        candidates_, features, grid, predicted, camera_, match, nullptr, &cpu.matching);
     if (wide.size() > matches.size()) matches = std::move(wide);
   }
-  Estimate first = Refine(predicted, features, matches);
+  cpu.match_ms += vision::CpuMs() - t;
+  Estimate first = Refine(predicted, features, matches, cpu);
   if (first.inliers < options_.track_min_inliers) return first;
   // A tighter search at the refined pose: more matches, fewer wrong ones.
   match.radius_px = 0.3 * options_.search_radius_px;
+  t = vision::CpuMs();
   const std::vector<vision::FeatureMatch> again = vision::MatchByProjection(
-      candidates_, features, grid, first.viewer_from_world, camera_, match);
-  Estimate second = Refine(first.viewer_from_world, features, again);
+      candidates_, features, grid, first.viewer_from_world, camera_, match, nullptr, &cpu.matching);
+  cpu.match_ms += vision::CpuMs() - t;
+  Estimate second = Refine(first.viewer_from_world, features, again, cpu);
   return second.inliers >= first.inliers ? second : first;
 }
 
 std::optional<Relocaliser::Estimate> Relocaliser::Relocalise(const vision::FrameFeatures& features,
                                                              const vision::KeypointGrid& grid,
-                                                             std::string& reason) {
+                                                             std::string& reason,
+                                                             RelocStageTimes& cpu) {
+  const double t = vision::CpuMs();
   if (features.size() == 0) {
     reason = "no features in the frame (too dark, blurred or textureless)";
     return std::nullopt;
@@ -299,9 +318,10 @@ std::optional<Relocaliser::Estimate> Relocaliser::Relocalise(const vision::Frame
   std::vector<vision::FeatureMatch> inlier_matches;
   inlier_matches.reserve(found.inliers.size());
   for (size_t i : found.inliers) inlier_matches.push_back(matches[i]);
-  const Estimate refined = Refine(found.model, features, inlier_matches);
+  cpu.relocalise_ms += vision::CpuMs() - t;
+  const Estimate refined = Refine(found.model, features, inlier_matches, cpu);
   // Confirm with guided matching over the whole map, as tracking would.
-  Estimate confirmed = TrackFrom(refined.viewer_from_world, features, grid);
+  Estimate confirmed = TrackFrom(refined.viewer_from_world, features, grid, cpu);
   if (confirmed.inliers < options_.reloc_min_inliers) {
     reason = "the pose found is not confirmed by the map (" + std::to_string(confirmed.inliers) +
              " inliers of " + std::to_string(options_.reloc_min_inliers) + " needed)";

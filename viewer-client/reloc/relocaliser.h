@@ -111,15 +111,30 @@ struct RelocaliserOptions {
   void Check() const;
 };
 
+// CPU time of ProcessFrame's stages, milliseconds (vision::CpuMs: the process's CPU time, so
+// the machine's other load does not count; a shared machine's wall times are noisy).
+struct RelocStageTimes {
+  vision::OrbTimings orb;       // feature extraction, step by step
+  double features_ms = 0;       // all of feature extraction (the sum of orb's steps)
+  double grid_ms = 0;           // bucketing the keypoints
+  double match_ms = 0;          // matching by projection (tracking and confirmation)
+  double refine_ms = 0;         // pose refinement (tracking and confirmation)
+  double relocalise_ms = 0;     // descriptor search and PnP RANSAC (relocalising frames only)
+  double smooth_ms = 0;         // the pose smoother
+  double total_ms = 0;          // all of ProcessFrame
+  vision::MatchStats matching;  // projection matching's work (all its calls in the frame)
+};
+
 struct RelocFrameResult {
   RelocStatus status = RelocStatus::kLost;
   // The pose (set unless lost).
   std::optional<Eigen::Isometry3d> viewer_from_world;
-  int features = 0;    // ORB keypoints in the frame
-  int matches = 0;     // map point - keypoint matches the pose was estimated from
-  int inliers = 0;     // of them, consistent with the pose
-  double ms = 0;       // wall time of ProcessFrame, milliseconds
-  std::string reason;  // why the frame is lost (empty otherwise)
+  int features = 0;     // ORB keypoints in the frame
+  int matches = 0;      // map point - keypoint matches the pose was estimated from
+  int inliers = 0;      // of them, consistent with the pose
+  double ms = 0;        // wall time of ProcessFrame, milliseconds
+  RelocStageTimes cpu;  // CPU time per stage
+  std::string reason;   // why the frame is lost (empty otherwise)
 };
 
 class Relocaliser {
@@ -159,11 +174,12 @@ class Relocaliser {
 
   Relocaliser(proto::ClipMap map, const PinholeCamera& camera, const RelocaliserOptions& options);
   Estimate Refine(const Eigen::Isometry3d& start, const vision::FrameFeatures& features,
-                  const std::vector<vision::FeatureMatch>& matches) const;
+                  const std::vector<vision::FeatureMatch>& matches, RelocStageTimes& cpu) const;
   Estimate TrackFrom(const Eigen::Isometry3d& predicted, const vision::FrameFeatures& features,
-                     const vision::KeypointGrid& grid) const;
+                     const vision::KeypointGrid& grid, RelocStageTimes& cpu) const;
   std::optional<Estimate> Relocalise(const vision::FrameFeatures& features,
-                                     const vision::KeypointGrid& grid, std::string& reason);
+                                     const vision::KeypointGrid& grid, std::string& reason,
+                                     RelocStageTimes& cpu);
 
   proto::ClipMap map_;
   PinholeCamera camera_;

@@ -17,15 +17,29 @@ void MatchOptions::Check() const {
 }
 
 KeypointGrid::KeypointGrid(const FrameFeatures& features, int width, int height, int cell_px)
-    : features_(&features), cell_(cell_px) {
+    : cell_(cell_px) {
   REENACT_CHECK(width > 0 && height > 0 && cell_px > 0, "bad grid size");
   cols_ = (width + cell_ - 1) / cell_;
   rows_ = (height + cell_ - 1) / cell_;
-  cells_.resize(static_cast<size_t>(cols_) * rows_);
-  for (size_t i = 0; i < features.keypoints.size(); ++i) {
+  const size_t n = features.keypoints.size();
+  std::vector<int> cell_of(n);
+  cell_start_.assign(static_cast<size_t>(cols_) * rows_ + 1, 0);
+  for (size_t i = 0; i < n; ++i) {
     const int cx = std::clamp(static_cast<int>(features.keypoints[i].pt.x) / cell_, 0, cols_ - 1);
     const int cy = std::clamp(static_cast<int>(features.keypoints[i].pt.y) / cell_, 0, rows_ - 1);
-    cells_[static_cast<size_t>(cy) * cols_ + cx].push_back(static_cast<int>(i));
+    cell_of[i] = cy * cols_ + cx;
+    ++cell_start_[cell_of[i] + 1];
+  }
+  for (size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+  index_.resize(n);
+  x_.resize(n);
+  y_.resize(n);
+  std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
+  for (size_t i = 0; i < n; ++i) {
+    const int e = fill[cell_of[i]]++;
+    index_[e] = static_cast<int>(i);
+    x_[e] = features.keypoints[i].pt.x;
+    y_[e] = features.keypoints[i].pt.y;
   }
 }
 
@@ -38,11 +52,12 @@ void KeypointGrid::Query(double x, double y, double radius, std::vector<int>& ou
   const int y1 = std::min(rows_ - 1, static_cast<int>(std::floor((y + radius) / cell_)));
   const double r2 = radius * radius;
   for (int cy = y0; cy <= y1; ++cy) {
-    for (int cx = x0; cx <= x1; ++cx) {
-      for (int i : cells_[static_cast<size_t>(cy) * cols_ + cx]) {
-        const double dx = features_->keypoints[i].pt.x - x, dy = features_->keypoints[i].pt.y - y;
-        if (dx * dx + dy * dy <= r2) out.push_back(i);
-      }
+    // The cells of one row are contiguous entries.
+    const int begin = cell_start_[static_cast<size_t>(cy) * cols_ + x0];
+    const int end = cell_start_[static_cast<size_t>(cy) * cols_ + x1 + 1];
+    for (int e = begin; e < end; ++e) {
+      const double dx = x_[e] - x, dy = y_[e] - y;
+      if (dx * dx + dy * dy <= r2) out.push_back(index_[e]);
     }
   }
 }
@@ -69,12 +84,13 @@ std::vector<FeatureMatch> MatchByProjection(const std::vector<MatchCandidate>& c
                                             const FrameFeatures& features, const KeypointGrid& grid,
                                             const Eigen::Isometry3d& sensor_from_world,
                                             const PinholeCamera& camera,
-                                            const MatchOptions& options,
-                                            std::vector<char>* in_view) {
+                                            const MatchOptions& options, std::vector<char>* in_view,
+                                            MatchStats* stats) {
   options.Check();
   if (in_view != nullptr) in_view->assign(candidates.size(), 0);
   std::vector<FeatureMatch> matches;
   std::vector<int> nearby;
+  int64_t num_in_view = 0, comparisons = 0;
   for (size_t c = 0; c < candidates.size(); ++c) {
     const MatchCandidate& cand = candidates[c];
     const Eigen::Vector3d pc = sensor_from_world * cand.point_in_world;
@@ -85,6 +101,7 @@ std::vector<FeatureMatch> MatchByProjection(const std::vector<MatchCandidate>& c
       continue;
     }
     if (in_view != nullptr) (*in_view)[c] = 1;
+    ++num_in_view;
     const bool any_level = cand.predicted_octave < 0;
     const double radius = options.radius_px *
                           (any_level ? 1.0 : std::pow(options.scale_factor, cand.predicted_octave));
@@ -96,6 +113,7 @@ std::vector<FeatureMatch> MatchByProjection(const std::vector<MatchCandidate>& c
       if (!any_level && (octave < cand.predicted_octave - 1 || octave > cand.predicted_octave + 1))
         continue;
       const int d = DescriptorDistance(cand.descriptor, features.Descriptor(k));
+      ++comparisons;
       if (d < best) {
         second = best;
         best = d;
@@ -107,6 +125,11 @@ std::vector<FeatureMatch> MatchByProjection(const std::vector<MatchCandidate>& c
     if (best_keypoint < 0 || best > options.max_distance) continue;
     if (second != std::numeric_limits<int>::max() && best >= options.ratio * second) continue;
     matches.push_back({cand.id, best_keypoint, best});
+  }
+  if (stats != nullptr) {
+    stats->projected += static_cast<int64_t>(candidates.size());
+    stats->in_view += num_in_view;
+    stats->comparisons += comparisons;
   }
   return OnePerKeypoint(std::move(matches), features.size());
 }

@@ -14,8 +14,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "vision/features/orb_features.h"
 #include "common/geometry/pinhole_camera.h"
+#include "vision/features/orb_features.h"
 
 namespace reenact::vision {
 
@@ -41,27 +41,40 @@ struct FeatureMatch {
   int distance = 0;  // Hamming
 };
 
-// Buckets keypoint indices by pixel for radius queries.
+// Buckets keypoint indices by pixel for radius queries. The cells are stored flat (each
+// cell's keypoints contiguous, with their positions beside them), so a query reads a few
+// short runs of memory.
 class KeypointGrid {
  public:
   KeypointGrid(const FrameFeatures& features, int width, int height, int cell_px = 16);
-  // Keypoints within radius of (x, y) (pixel distance).
+  // Keypoints within radius of (x, y) (pixel distance), cell by cell, in each cell in
+  // increasing index.
   void Query(double x, double y, double radius, std::vector<int>& out) const;
 
  private:
-  const FrameFeatures* features_;
   int cell_, cols_, rows_;
-  std::vector<std::vector<int>> cells_;
+  std::vector<int> cell_start_;  // per cell, its first entry; one more at the end
+  std::vector<int> index_;       // keypoint index per entry
+  std::vector<float> x_, y_;     // keypoint position per entry
+};
+
+// Work done by one matching call (added to, not reset).
+struct MatchStats {
+  int64_t projected = 0;    // candidates projected
+  int64_t in_view = 0;      // of them, inside the image in front of the camera
+  int64_t comparisons = 0;  // descriptor distances computed
 };
 
 // Matches by projection with sensor_from_world. `in_view` (optional, one entry per candidate)
-// is set to 1 for candidates that project inside the image in front of the camera.
+// is set to 1 for candidates that project inside the image in front of the camera. `stats`
+// (optional) is added to.
 std::vector<FeatureMatch> MatchByProjection(const std::vector<MatchCandidate>& candidates,
                                             const FrameFeatures& features, const KeypointGrid& grid,
                                             const Eigen::Isometry3d& sensor_from_world,
                                             const PinholeCamera& camera,
                                             const MatchOptions& options,
-                                            std::vector<char>* in_view = nullptr);
+                                            std::vector<char>* in_view = nullptr,
+                                            MatchStats* stats = nullptr);
 
 // Matches by descriptor only (the radius and octave are ignored).
 std::vector<FeatureMatch> MatchByDescriptor(const std::vector<MatchCandidate>& candidates,

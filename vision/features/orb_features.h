@@ -19,9 +19,9 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "vision/pose/observation_model.h"
 #include "common/geometry/pinhole_camera.h"
 #include "common/image/image.h"
+#include "vision/pose/observation_model.h"
 
 namespace reenact::vision {
 
@@ -44,8 +44,9 @@ struct OrbFeatureOptions {
   // SLAM's figures were measured with single readings); the clip map uses 4.
   int depth_fit_radius_px = 0;
   // Sub-pixel keypoints: each keypoint moved to the gradient-weighted corner position
-  // (cv::cornerSubPix in a window of half side 2 s, s = scale_factor^octave) on the full
-  // image, kept when it stays within 2 s (else the whole-pixel position stays). FAST's own
+  // (subpixel_corner.h, cv::cornerSubPix's iteration, in a window of half side 2 s,
+  // s = scale_factor^octave) on the full image, kept when it stays within 2 s (else the
+  // whole-pixel position stays). FAST's own
   // keypoints sit 1-2 px inside a corner. Default off: the SLAM's figures were measured
   // without it; the clip map and the viewer's relocaliser turn it on.
   bool subpixel = false;
@@ -69,11 +70,25 @@ struct FrameFeatures {
   }
 };
 
+// CPU time of ExtractOrbFeatures' steps, milliseconds (CpuMs(): the process's CPU time, so a
+// loaded machine's other processes do not count).
+struct OrbTimings {
+  double detect_ms = 0;    // OpenCV's ORB: pyramid, FAST, Harris score, orientation, descriptors
+  double spread_ms = 0;    // spreading over the grid
+  double subpixel_ms = 0;  // sub-pixel refinement
+  double rest_ms = 0;      // mask, undistortion, depth, copies
+};
+
 // Features of one frame. gray: CV_8UC1 of the camera's size; depth registered to it;
 // person_mask (255 = subject) may be null. Preconditions (CHECK): sizes agree, options valid.
+// timings (optional) receives the CPU time of each step.
 FrameFeatures ExtractOrbFeatures(const cv::Mat& gray, const ImageDepthMm& depth,
                                  double depth_scale_m, const ImageGray8* person_mask,
-                                 const PinholeCamera& camera, const OrbFeatureOptions& options);
+                                 const PinholeCamera& camera, const OrbFeatureOptions& options,
+                                 OrbTimings* timings = nullptr);
+
+// The process's CPU time in milliseconds (std::clock), for per-stage profiles.
+double CpuMs();
 
 // Hamming distance between two 256-bit ORB descriptors.
 int DescriptorDistance(const uint8_t* a, const uint8_t* b);

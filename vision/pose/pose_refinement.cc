@@ -39,6 +39,11 @@ int Classify(const Eigen::Isometry3d& pose, const std::vector<PointObservation>&
 
 }  // namespace
 
+// A round ends when the accepted update is below this (radians and metres): 0.1 micrometre
+// at a metre, far below what the pixels tell, where 1e-10 ran every round to its last
+// iteration.
+constexpr double kConvergedStep = 1e-7;
+
 PoseRefinementResult RefinePose(const Eigen::Isometry3d& initial_sensor_from_world,
                                 const std::vector<PointObservation>& observations, double fx,
                                 double fy, const ObservationNoise& noise,
@@ -92,7 +97,7 @@ PoseRefinementResult RefinePose(const Eigen::Isometry3d& initial_sensor_from_wor
         if (candidate_cost < cost) {
           pose = candidate;
           lambda = std::max(1e-9, lambda / 3);
-          improved = delta.norm() > 1e-10 && (cost - candidate_cost) > 1e-12 * cost;
+          improved = delta.norm() > kConvergedStep && (cost - candidate_cost) > 1e-12 * cost;
           cost = candidate_cost;
           if (!improved) break;
         } else {

@@ -129,6 +129,30 @@ TEST(Relocaliser, TracksAMovingViewerFrameToFrame) {
   }
 }
 
+// The CPU time per stage: each stage a part of the frame's total, the descriptor search only
+// when relocalising, and the matching's work counted (every frame matches by projection: a
+// relocalised pose is confirmed that way).
+TEST(Relocaliser, ReportsCpuTimePerStage) {
+  Relocaliser reloc = Make(TestWorld().map);
+  for (int k = 0; k < 3; ++k) {
+    const auto result = reloc.ProcessFrame(RenderGray(60 + k, ViewerPose(2.0 * k)));
+    ASSERT_TRUE(result.ok()) << result.error().message;
+    ASSERT_NE(result->status, RelocStatus::kLost) << result->reason;
+    const RelocStageTimes& cpu = result->cpu;
+    EXPECT_GT(cpu.features_ms, 0.0);
+    EXPECT_GE(cpu.features_ms, cpu.orb.detect_ms + cpu.orb.spread_ms + cpu.orb.subpixel_ms - 1e-6);
+    const double parts = cpu.features_ms + cpu.grid_ms + cpu.match_ms + cpu.refine_ms +
+                         cpu.relocalise_ms + cpu.smooth_ms;
+    EXPECT_GE(cpu.total_ms, parts - 1e-6);
+    EXPECT_EQ(cpu.relocalise_ms > 0, result->status == RelocStatus::kRelocalised);
+    EXPECT_GT(cpu.matching.comparisons, 0);
+    EXPECT_GE(cpu.matching.projected, cpu.matching.in_view);
+    // At most two tracking attempts (a failed track, then the confirmation) of three passes,
+    // each over at most the whole map.
+    EXPECT_LE(cpu.matching.projected, 6 * static_cast<int64_t>(reloc.map_size()));
+  }
+}
+
 TEST(Relocaliser, LostOnAFeaturelessFrameThenRelocalisesAgain) {
   Relocaliser reloc = Make(TestWorld().map);
   const Eigen::Isometry3d truth = ViewerPose(5);

@@ -1,9 +1,11 @@
+#include "vision/features/feature_matching.h"
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <numbers>
 #include <random>
-
-#include "vision/features/feature_matching.h"
 
 namespace reenact::vision {
 namespace {
@@ -99,6 +101,66 @@ TEST(SlamMatching, DescriptorMatchingFindsTheSameKeypointsAndKeepsOnePerKeypoint
     doubled.push_back(c);
   }
   EXPECT_TRUE(MatchByDescriptor(doubled, fx.features, {}).empty());
+}
+
+// The grid's answer is the brute-force set of keypoints within the radius, whatever the
+// radius and position (also near and beyond the image's edges).
+TEST(KeypointGrid, QueryEqualsBruteForce) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> ux(0, 639.99f), uy(0, 479.99f);
+  FrameFeatures features;
+  for (int i = 0; i < 3000; ++i) features.keypoints.emplace_back(ux(rng), uy(rng), 7.f);
+  const KeypointGrid grid(features, 640, 480);
+  std::uniform_real_distribution<double> qx(-30, 670), qy(-30, 510), qr(0.5, 40);
+  std::vector<int> got;
+  for (int q = 0; q < 500; ++q) {
+    const double x = qx(rng), y = qy(rng), r = qr(rng);
+    grid.Query(x, y, r, got);
+    std::vector<int> want;
+    for (int i = 0; i < 3000; ++i) {
+      const double dx = features.keypoints[i].pt.x - x, dy = features.keypoints[i].pt.y - y;
+      if (dx * dx + dy * dy <= r * r) want.push_back(i);
+    }
+    std::sort(got.begin(), got.end());
+    ASSERT_EQ(got, want) << "query " << q;
+  }
+  grid.Query(std::nan(""), 10, 5, got);
+  EXPECT_TRUE(got.empty());
+  grid.Query(10, 10, 0, got);
+  EXPECT_TRUE(got.empty());
+}
+
+// MatchStats counts what was done: every candidate projected, those in view, and one
+// descriptor comparison per keypoint found near an in-view candidate's projection.
+TEST(MatchByProjection, StatsCountTheWork) {
+  Fixture fx;
+  const KeypointGrid grid(fx.features, 640, 480);
+  MatchOptions o;
+  o.radius_px = 8;
+  std::vector<MatchCandidate> candidates = fx.candidates;
+  for (MatchCandidate& c : candidates) c.predicted_octave = -1;  // any level, radius as given
+  MatchStats stats;
+  std::vector<char> in_view;
+  MatchByProjection(candidates, fx.features, grid, Eigen::Isometry3d::Identity(), fx.camera, o,
+                    &in_view, &stats);
+  EXPECT_EQ(stats.projected, static_cast<int64_t>(candidates.size()));
+  int64_t expected_in_view = 0, expected_comparisons = 0;
+  std::vector<int> near;
+  for (size_t c = 0; c < candidates.size(); ++c) {
+    if (!in_view[c]) continue;
+    ++expected_in_view;
+    const auto px = fx.camera.Project(candidates[c].point_in_world);
+    grid.Query(px->x(), px->y(), o.radius_px, near);
+    expected_comparisons += static_cast<int64_t>(near.size());
+  }
+  EXPECT_EQ(stats.in_view, expected_in_view);
+  EXPECT_GT(stats.in_view, 0);
+  EXPECT_EQ(stats.comparisons, expected_comparisons);
+  // Added to, not reset.
+  MatchByProjection(candidates, fx.features, grid, Eigen::Isometry3d::Identity(), fx.camera, o,
+                    nullptr, &stats);
+  EXPECT_EQ(stats.projected, 2 * static_cast<int64_t>(candidates.size()));
+  EXPECT_EQ(stats.comparisons, 2 * expected_comparisons);
 }
 
 }  // namespace
