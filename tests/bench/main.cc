@@ -24,7 +24,7 @@ constexpr const char* kUsage =
     "  reenact-bench server ...\n"
     "  reenact-bench sources [--oni FILE] [--tum DIR] [--repeats R] [--json FILE]\n"
     "  reenact-bench capture [--frames N] [--repeats R] [--tum DIR] [--json FILE]\n"
-    "  reenact-bench viewer [--frames N] [--repeats R] [--json FILE]\n";
+    "  reenact-bench viewer [--frames N] [--repeats R] [--texturing NAME] [--json FILE]\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-bench", e); }
 
@@ -59,8 +59,9 @@ int Core(const CommandLine& cl) {
 
 int main(int argc, char** argv) {
   // Flags of every command; each command reads its own.
-  const CommandLineSpec spec{
-      {"repeats", "only", "json", "clips", "clients", "seconds", "db", "oni", "tum", "frames"}, {"quick"}};
+  const CommandLineSpec spec{{"repeats", "only", "json", "clips", "clients", "seconds", "db", "oni",
+                              "tum", "frames", "texturing"},
+                             {"quick"}};
   return RunTool("reenact-bench", kUsage, spec,
                  {{"core", Core},
                   {"server", bench::RunServerBench},

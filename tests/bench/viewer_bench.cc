@@ -23,6 +23,7 @@
 #include "viewer-client/camera/synthetic_camera_source.h"
 #include "viewer-client/play/ar_player.h"
 #include "viewer-client/play/texture_cache.h"
+#include "viewer-client/play/texturing_presets.h"
 #include "viewer-client/play/viewer_camera.h"
 #include "viewer-client/render/renderer.h"
 
@@ -47,7 +48,8 @@ struct Setup {
   std::vector<double> source_ms;  // the synthetic camera's own rendering, per frame
 };
 
-Expected<Setup> MakeSetup(int frames, const fs::path& scratch) {
+Expected<Setup> MakeSetup(int frames, const viewer::TexturingOptions& texturing,
+                          const fs::path& scratch) {
   Setup s;
   auto source = capture::SyntheticSource::Open(kScenario);
   if (!source.ok()) return source.error();
@@ -65,7 +67,9 @@ Expected<Setup> MakeSetup(int frames, const fs::path& scratch) {
   auto map = clip->ReadMap();
   if (!map.ok()) return map.error();
   s.map = std::move(map).value();
-  s.reenactment.emplace(clip->manifest(), std::move(clip_frames));
+  viewer::ReenactmentOptions options;
+  options.texturing = texturing;
+  s.reenactment.emplace(clip->manifest(), std::move(clip_frames), options);
 
   auto camera = viewer::OpenCameraSource(
       std::string("synthetic:") + kScenario + "?frames=" + std::to_string(frames), std::nullopt);
@@ -210,6 +214,8 @@ int RunViewerBench(const CommandLine& cl) {
   if (*frames < 2 || *frames > 100000)
     return fail(MakeError("usage", "--frames must be a whole number in [2, 100000]"));
   const int r = static_cast<int>(*repeats);
+  const auto texturing = viewer::TexturingPreset(cl.GetOr("texturing", "thesis"));
+  if (!texturing.ok()) return fail(texturing.error());
 
   auto renderer = viewer::Renderer::CreateHeadless(640, 480);
   if (!renderer.ok())
@@ -228,7 +234,7 @@ int RunViewerBench(const CommandLine& cl) {
   std::printf("setting up: recording %s (%d frames), rendering %lld synthetic camera frames...\n",
               kScenario, kClipFrames, static_cast<long long>(*frames));
   std::fflush(stdout);
-  auto setup = MakeSetup(static_cast<int>(*frames), scratch);
+  auto setup = MakeSetup(static_cast<int>(*frames), *texturing, scratch);
   if (!setup.ok()) return fail(setup.error());
   Setup& s = *setup;
   const viewer::Reenactment& reenactment = *s.reenactment;
@@ -354,12 +360,12 @@ int RunViewerBench(const CommandLine& cl) {
   AddThesisRow(report, "loop");
 
   std::printf(
-      "%s; 640x480, %d runs after a warm-up; clip %s (%d frames, map of %zu points); synthetic "
+      "%s; 640x480, texturing %s, %d runs after a warm-up; clip %s (%d frames, map of %zu points); synthetic "
       "viewer camera of %d frames (0 -> +45 -> 0 -> -45 -> 0 degrees), lost frames per run: "
       "%d synthetic, %d tum. Stage times are medians over frames; fps the median over runs of "
       "frames / wall time; source_ms of loop-ar-synthetic is the scene's CPU rasteriser, "
       "outside the loop.\n",
-      renderer->driver().c_str(), r, kScenario, clip_frames, s.map.points.size(), n,
+      renderer->driver().c_str(), cl.GetOr("texturing", "thesis").c_str(), r, kScenario, clip_frames, s.map.points.size(), n,
       synthetic->lost / r, tum_loop->lost / r);
   const Status printed = report.Print(cl.Get("json"));
   return printed.ok() ? 0 : fail(printed.error());

@@ -2,7 +2,10 @@
 // `reenact-bench viewer`: how fast the viewer draws and runs its AR loop at 640x480 on the
 // machine's OpenGL (Mesa llvmpipe where there is no GPU), issue 7's speed goals.
 //
-//   reenact-bench viewer [--frames N] [--repeats R] [--json FILE]
+//   reenact-bench viewer [--frames N] [--repeats R] [--texturing NAME] [--json FILE]
+//
+// --texturing: the reenactment's texturing preset (viewer-client/play/texturing_presets.h),
+// default thesis; issue 9's goal is the whole loop at 30 fps or more with its methods too.
 //
 // Set-up (not timed): turn-and-kick's first 60 frames are recorded through the real capture
 // path and read back (clip and relocalisation map); the synthetic viewer camera

@@ -144,6 +144,8 @@ TEST(BenchViewerBadInput, FlagsOutOfRange) {
   ExpectOneLineError(RunProcess({kBench, "viewer", "--repeats", "0"}, kQuick), "--repeats");
   ExpectOneLineError(RunProcess({kBench, "viewer", "--frames", "1"}, kQuick), "--frames");
   ExpectOneLineError(RunProcess({kBench, "viewer", "--frames", "many"}, kQuick), "frames");
+  ExpectOneLineError(RunProcess({kBench, "viewer", "--texturing", "nope"}, kQuick),
+                     "unknown texturing 'nope'");
 }
 
 }  // namespace
