@@ -32,7 +32,7 @@ constexpr const char* kUsage =
     "              synthetic:SCENARIO[?frames=N&max_deg=D&subject=0|1&seed=S]\n"
     "      without --headless: the AR view in a window (space, arrows, +/-, s, c, t, q)\n"
     "  --steady: steady motion (flagged skeletons interpolated across, joints One Euro filtered)\n"
-    "  --texturing NAME: thesis (default) | per-part | occlusion | blend\n"
+    "  --texturing NAME: thesis | per-part | occlusion | blend | shape (default)\n"
     "      (viewer-client/play/texturing_presets.h; docs/quality.md compares them)\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-viewer", e); }
@@ -41,11 +41,10 @@ int Fail(const Error& e) { return ReportFailure("reenact-viewer", e); }
 Expected<viewer::ReenactmentOptions> ReenactmentOptionsFrom(const CommandLine& cl) {
   viewer::ReenactmentOptions options;
   options.steady_motion = cl.Has("steady");
-  if (auto name = cl.Get("texturing")) {
-    auto texturing = viewer::TexturingPreset(*name);
-    if (!texturing.ok()) return texturing.error();
-    options.texturing = *texturing;
-  }
+  auto texturing =
+      viewer::TexturingPreset(cl.GetOr("texturing", std::string(viewer::kDefaultTexturingPreset)));
+  if (!texturing.ok()) return texturing.error();
+  options.texturing = *texturing;
   return options;
 }
 

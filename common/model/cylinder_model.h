@@ -16,6 +16,17 @@ namespace reenact {
 
 using RadiusRatios = std::array<double, kBodyPartCount>;
 
+// Extension of each part past its end joint (issue 9, a closer shape: hands, feet and the top
+// of the head lie past the last joint of their part), as a ratio of the bone length
+// ||s_a - s_b||, >= 0. The end joint is EndJoint(part): the head joint for the head (whose
+// axis runs head -> neck), joint b for every other part. All zeros (the default) is the
+// thesis's cylinder between the two joints. Fitted by extension_fit.h.
+using PartExtensions = std::array<double, kBodyPartCount>;
+
+// The joint past which a part is extended: Joint::kHead for the head, PartJoints(part).second
+// otherwise.
+Joint EndJoint(BodyPart part);
+
 // Typical adult proportions (radius / bone length), used where a part could not be fitted.
 RadiusRatios DefaultRadiusRatios();
 
@@ -31,12 +42,15 @@ struct Cylinder {
 inline constexpr double kMinBoneLength = 1e-4;
 
 // Cylinder of one part posed from a skeleton; nullopt if a joint is missing or the bone is
-// shorter than kMinBoneLength.
+// shorter than kMinBoneLength. With extensions, the axis end at EndJoint(part) moves outwards
+// along the axis by extensions[part] * bone length; the radius stays bone length * ratio.
+// Preconditions (CHECK): ratio and extension finite and >= 0.
 std::optional<Cylinder> PoseCylinder(const Skeleton& skeleton, BodyPart part,
-                                     const RadiusRatios& ratios);
+                                     const RadiusRatios& ratios,
+                                     const PartExtensions& extensions = {});
 
 // All parts, indexed by Index(BodyPart).
-std::array<std::optional<Cylinder>, kBodyPartCount> PoseCylinders(const Skeleton& skeleton,
-                                                                  const RadiusRatios& ratios);
+std::array<std::optional<Cylinder>, kBodyPartCount> PoseCylinders(
+    const Skeleton& skeleton, const RadiusRatios& ratios, const PartExtensions& extensions = {});
 
 }  // namespace reenact

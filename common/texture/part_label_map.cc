@@ -156,8 +156,10 @@ ImageLabel8 RenderPartLabelMap(const std::array<std::optional<Cylinder>, kBodyPa
 }
 
 ImageLabel8 PartLabelMapOfFrame(const Skeleton& skeleton_in_sensor, const RadiusRatios& ratios,
-                                const PinholeCamera& crop_camera, const ImageGray8& mask) {
-  return RenderPartLabelMap(PoseCylinders(skeleton_in_sensor, ratios), crop_camera, mask);
+                                const PinholeCamera& crop_camera, const ImageGray8& mask,
+                                const PartExtensions& extensions) {
+  return RenderPartLabelMap(PoseCylinders(skeleton_in_sensor, ratios, extensions), crop_camera,
+                            mask);
 }
 
 }  // namespace reenact

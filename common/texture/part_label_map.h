@@ -38,9 +38,11 @@ inline constexpr double kLabelMapNearZ = 1e-3;
 ImageLabel8 RenderPartLabelMap(const std::array<std::optional<Cylinder>, kBodyPartCount>& cylinders,
                                const PinholeCamera& camera, const ImageGray8& mask);
 
-// The map of a stored frame: PoseCylinders(skeleton_in_sensor, ratios) rendered into the
-// crop camera (PinholeCamera::Cropped of the colour camera) over the crop's mask.
+// The map of a stored frame: PoseCylinders(skeleton_in_sensor, ratios, extensions) rendered
+// into the crop camera (PinholeCamera::Cropped of the colour camera) over the crop's mask;
+// extensions: the shape the frame is drawn with (all zeros: the thesis's cylinders).
 ImageLabel8 PartLabelMapOfFrame(const Skeleton& skeleton_in_sensor, const RadiusRatios& ratios,
-                                const PinholeCamera& crop_camera, const ImageGray8& mask);
+                                const PinholeCamera& crop_camera, const ImageGray8& mask,
+                                const PartExtensions& extensions = {});
 
 }  // namespace reenact

@@ -214,7 +214,9 @@ int RunViewerBench(const CommandLine& cl) {
   if (*frames < 2 || *frames > 100000)
     return fail(MakeError("usage", "--frames must be a whole number in [2, 100000]"));
   const int r = static_cast<int>(*repeats);
-  const auto texturing = viewer::TexturingPreset(cl.GetOr("texturing", "thesis"));
+  const std::string texturing_name =
+      cl.GetOr("texturing", std::string(viewer::kDefaultTexturingPreset));
+  const auto texturing = viewer::TexturingPreset(texturing_name);
   if (!texturing.ok()) return fail(texturing.error());
 
   auto renderer = viewer::Renderer::CreateHeadless(640, 480);
@@ -360,13 +362,14 @@ int RunViewerBench(const CommandLine& cl) {
   AddThesisRow(report, "loop");
 
   std::printf(
-      "%s; 640x480, texturing %s, %d runs after a warm-up; clip %s (%d frames, map of %zu points); synthetic "
+      "%s; 640x480, texturing %s, %d runs after a warm-up; clip %s (%d frames, map of %zu points); "
+      "synthetic "
       "viewer camera of %d frames (0 -> +45 -> 0 -> -45 -> 0 degrees), lost frames per run: "
       "%d synthetic, %d tum. Stage times are medians over frames; fps the median over runs of "
       "frames / wall time; source_ms of loop-ar-synthetic is the scene's CPU rasteriser, "
       "outside the loop.\n",
-      renderer->driver().c_str(), cl.GetOr("texturing", "thesis").c_str(), r, kScenario, clip_frames, s.map.points.size(), n,
-      synthetic->lost / r, tum_loop->lost / r);
+      renderer->driver().c_str(), texturing_name.c_str(), r, kScenario, clip_frames,
+      s.map.points.size(), n, synthetic->lost / r, tum_loop->lost / r);
   const Status printed = report.Print(cl.Get("json"));
   return printed.ok() ? 0 : fail(printed.error());
 }

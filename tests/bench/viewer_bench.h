@@ -5,7 +5,7 @@
 //   reenact-bench viewer [--frames N] [--repeats R] [--texturing NAME] [--json FILE]
 //
 // --texturing: the reenactment's texturing preset (viewer-client/play/texturing_presets.h),
-// default thesis; issue 9's goal is the whole loop at 30 fps or more with its methods too.
+// default the viewer's (kDefaultTexturingPreset); issue 9's goal is the whole loop at 30 fps or more with its methods too.
 //
 // Set-up (not timed): turn-and-kick's first 60 frames are recorded through the real capture
 // path and read back (clip and relocalisation map); the synthetic viewer camera

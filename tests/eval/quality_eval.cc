@@ -106,19 +106,20 @@ struct QualityHarness::State {
   viewer::Renderer renderer;
   PinholeCamera camera;
   std::string gl_renderer;
-  std::map<int, int> texture_of_frame;  // stored frame -> GL texture index
+  // (stored frame, extended parts) -> GL texture index: the part-label maps follow the shape.
+  std::map<std::pair<int, bool>, int> texture_of_frame;
   std::map<int, int> frame_of_texture;
-  std::map<int, ReferenceCrop> crops;        // stored frame -> the crop as the reference samples it
+  std::map<int, ReferenceCrop> crops;  // GL texture index -> the crop as the reference samples it
   std::map<int, ImageLabel8> sensor_labels;  // stored frame -> the scene's labels from the sensor
 
-  int TextureFor(int n) {
-    auto it = texture_of_frame.find(n);
+  int TextureFor(int n, bool extended_parts) {
+    auto it = texture_of_frame.find({n, extended_parts});
     if (it != texture_of_frame.end()) return it->second;
-    const viewer::StoredTexture t = clip.Texture(n);
+    const viewer::StoredTexture t = clip.Texture(n, extended_parts);
     const int index = renderer.UploadTexture(t);
-    crops[n] = ReferenceCrop{t.color, t.mask, t.camera, t.part_labels, t.depth_m};
+    crops[index] = ReferenceCrop{t.color, t.mask, t.camera, t.part_labels, t.depth_m};
     frame_of_texture[index] = n;
-    return texture_of_frame[n] = index;
+    return texture_of_frame[{n, extended_parts}] = index;
   }
 
   SourceLabels LabelsFor(int n) {
@@ -126,7 +127,7 @@ struct QualityHarness::State {
     if (it == sensor_labels.end())
       it = sensor_labels.emplace(n, scene.RenderSensor(n).part_labels).first;
     const proto::ClipFrame& f = clip.frame(n);
-    return {&crops.at(n).mask, f.crop_x, f.crop_y, &it->second};
+    return {&f.mask, f.crop_x, f.crop_y, &it->second};
   }
 };
 
@@ -192,7 +193,8 @@ Expected<FrameEvaluation> QualityHarness::Evaluate(const QualityMethod& method, 
   FrameEvaluation e;
   const auto t0 = std::chrono::steady_clock::now();
   e.frame = method.build(s.clip, k, s.camera, *viewer_from_world,
-                         [&s](int n) { return s.TextureFor(n); }, history);
+                         [&s, &method](int n) { return s.TextureFor(n, method.extended_parts); },
+                         history);
   e.rendered = s.renderer.Render(e.frame.draw);
   e.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   REENACT_CHECK(e.frame.cylinder_parts.size() == e.frame.draw.cylinders.size(),
@@ -208,7 +210,7 @@ Expected<FrameEvaluation> QualityHarness::Evaluate(const QualityMethod& method, 
     if (e.frame.draw.textured)
       for (const viewer::TextureCandidate& t : c.candidates) {
         const int n = s.frame_of_texture.at(t.texture);
-        part.candidates.push_back({&s.crops.at(n), n, t.stored_from_viewer, t.weight});
+        part.candidates.push_back({&s.crops.at(t.texture), n, t.stored_from_viewer, t.weight});
       }
     parts.push_back(part);
   }

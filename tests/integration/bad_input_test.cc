@@ -146,7 +146,7 @@ TEST(BadInput, UnknownTexturingListsTheKnownOnes) {
                                camera, "--texturing", "sharpest", "--headless", "--out",
                                tmp.path() + "/out"},
                               kQuick);
-    ExpectOneLineError(r, "unknown texturing 'sharpest'; known: thesis, per-part, occlusion, blend");
+    ExpectOneLineError(r, "unknown texturing 'sharpest'; known: thesis, per-part, occlusion, blend, shape");
   }
 }
 

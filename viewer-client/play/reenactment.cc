@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "common/error/check.h"
+#include "common/model/extension_fit.h"
 #include "common/texture/texture_mapping.h"
 #include "common/texture/visibility_maps.h"
 
@@ -36,6 +39,25 @@ uint16_t PartsInsideCrop(const Skeleton& skeleton_in_sensor, const PinholeCamera
     if (inside) mask |= static_cast<uint16_t>(1u << p);
   }
   return mask;
+}
+
+// Frames the part extensions are fitted from: the representative frame (if usable) and up to
+// `others` more usable frames spread evenly over the clip.
+std::vector<int> ExtensionFitFrames(int64_t representative, std::span<const bool> usable,
+                                    int others) {
+  std::vector<int> usable_frames;
+  for (size_t n = 0; n < usable.size(); ++n)
+    if (usable[n]) usable_frames.push_back(static_cast<int>(n));
+  std::vector<int> out;
+  if (representative >= 0 && representative < static_cast<int64_t>(usable.size()) &&
+      usable[representative])
+    out.push_back(static_cast<int>(representative));
+  const int count = std::min<int>(others, static_cast<int>(usable_frames.size()));
+  for (int i = 0; i < count; ++i) {
+    const int n = usable_frames[(2 * i + 1) * usable_frames.size() / (2 * count)];
+    if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
+  }
+  return out;
 }
 
 }  // namespace
@@ -79,6 +101,21 @@ Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFr
     }
   part_index_ = PartTextureIndex(skeletons_in_sensor_, part_allowed);
 
+  std::vector<PinholeCamera> fit_cameras;
+  std::vector<ExtensionFitFrame> fit_frames;
+  const std::vector<int> fit_indices = ExtensionFitFrames(
+      manifest_.representative_frame, std::span<const bool>(usable_.get(), frames_.size()), 8);
+  fit_cameras.reserve(fit_indices.size());
+  for (int n : fit_indices) {
+    const proto::ClipFrame& f = frames_[n];
+    fit_cameras.push_back(
+        manifest_.color_camera.Cropped(f.crop_x, f.crop_y, f.color.width, f.color.height));
+    fit_frames.push_back({&skeletons_in_sensor_[n], &fit_cameras.back(), &f.mask, &f.depth});
+  }
+  part_extensions_ = FitPartExtensions(fit_frames, manifest_.radius_ratio,
+                                       {.depth_scale_m = manifest_.depth_scale_m})
+                         .extension;
+
   std::vector<Skeleton> in_world;
   std::vector<double> times;
   std::unique_ptr<bool[]> flagged = std::make_unique<bool[]>(frames_.size());
@@ -105,11 +142,16 @@ Eigen::Vector3d Reenactment::SubjectCentre() const {
 }
 
 StoredTexture Reenactment::Texture(int n) const {
+  return Texture(n, options_.texturing.extended_parts);
+}
+
+StoredTexture Reenactment::Texture(int n, bool extended_parts) const {
   const proto::ClipFrame& f = frames_.at(n);
   const PinholeCamera camera =
       manifest_.color_camera.Cropped(f.crop_x, f.crop_y, f.color.width, f.color.height);
   VisibilityMaps maps = MakeVisibilityMaps(skeletons_in_sensor_.at(n), manifest_.radius_ratio,
-                                           camera, f.mask, f.depth, manifest_.depth_scale_m);
+                                           camera, f.mask, f.depth, manifest_.depth_scale_m,
+                                           extended_parts ? part_extensions_ : PartExtensions{});
   return {f.color, f.mask, camera, std::move(maps.part_labels), std::move(maps.depth_m)};
 }
 
@@ -154,7 +196,8 @@ ReenactedFrame Reenactment::BuildPosed(int k, const Skeleton& skeleton_in_world,
       for (auto& part : chosen) part.push_back({out.texture_frame, ranked.front().cost, 1.0});
   }
 
-  const auto cylinders = PoseCylinders(viewer_skeleton, manifest_.radius_ratio);
+  const PartExtensions extensions = texturing.extended_parts ? part_extensions_ : PartExtensions{};
+  const auto cylinders = PoseCylinders(viewer_skeleton, manifest_.radius_ratio, extensions);
   for (int p = 0; p < kBodyPartCount; ++p) {
     if (!cylinders[p]) continue;
     const BodyPart part = static_cast<BodyPart>(p);
@@ -165,11 +208,11 @@ ReenactedFrame Reenactment::BuildPosed(int k, const Skeleton& skeleton_in_world,
     draw.color = PartColor(p);
     draw.part = part;
     draw.texturing = texturing.mode;
-    const auto [ja, jb] = PartJoints(part);
     for (const PartCandidate& c : chosen[p]) {
-      const Skeleton& stored = skeletons_in_sensor_[c.frame];
-      if (!stored.HasPart(part)) continue;
-      const auto m = StoredFromViewerMapping(draw.a, draw.b, stored[ja], stored[jb]);
+      const auto stored =
+          PoseCylinder(skeletons_in_sensor_[c.frame], part, manifest_.radius_ratio, extensions);
+      if (!stored) continue;
+      const auto m = StoredFromViewerMapping(draw.a, draw.b, stored->a, stored->b);
       if (!m) continue;
       const int texture = texture_for_frame(c.frame);
       if (texture >= 0) draw.candidates.push_back({texture, *m, c.weight});

@@ -52,6 +52,10 @@ struct TexturingOptions {
   // Per-part selection: cost discount of the previous output frame's choice, [0, 1).
   double hysteresis = 0;
   double missing_joint_cost_m = 1.0;  // >= 0, as in Eq. 5
+  // A closer shape (issue 9): every part extended past its end joint by the clip's fitted
+  // extensions (Reenactment::part_extensions(); common/model/extension_fit.h), in the drawn
+  // cylinders and in the stored frames' part-label maps alike. false: the thesis's cylinders.
+  bool extended_parts = false;
 
   // Throws CheckError when a field is out of range or the combination is not supported.
   void Check() const;
@@ -83,8 +87,15 @@ class Reenactment {
 
   // The stored crop of frame n as the renderer uploads it, with its visibility maps
   // (common/texture/visibility_maps.h: part labels of the posed cylinder model, depth in
-  // metres), computed here on each call (the caller uploads each frame once).
+  // metres), computed here on each call (the caller uploads each frame once). The part labels
+  // come from the shape options().texturing draws (extended_parts), or the one named.
   StoredTexture Texture(int n) const;
+  StoredTexture Texture(int n, bool extended_parts) const;
+
+  // Extension of each part past its end joint (cylinder_model.h), fitted at load from the
+  // representative frame and up to 8 other usable frames (common/model/extension_fit.h); the
+  // shape TexturingOptions::extended_parts draws.
+  const PartExtensions& part_extensions() const { return part_extensions_; }
 
   // Draw list for output frame k seen by a viewer camera, with options().texturing.
   // texture_for_frame maps a stored frame index to the renderer's texture index (the caller
@@ -120,6 +131,7 @@ class Reenactment {
   // Per-part selection over usable frames, each part only where it lies inside the crop.
   PartTextureIndex part_index_;
   std::vector<Skeleton> steady_in_world_;  // the steady track, world frame
+  PartExtensions part_extensions_{};
 };
 
 }  // namespace reenact::viewer

@@ -6,7 +6,7 @@
 namespace reenact::viewer {
 namespace {
 
-constexpr std::array<std::pair<std::string_view, TexturingOptions>, 4> kPresets = {{
+constexpr std::array<std::pair<std::string_view, TexturingOptions>, 5> kPresets = {{
     {"thesis", {}},
     {"per-part", {.selection = TextureSelection::kPerPart}},
     {"occlusion",
@@ -18,6 +18,12 @@ constexpr std::array<std::pair<std::string_view, TexturingOptions>, 4> kPresets 
       .mode = TexturingMode::kBlendVisible,
       .candidates = kMaxTextureCandidates,
       .hysteresis = 0.1}},
+    {"shape",
+     {.selection = TextureSelection::kPerPart,
+      .mode = TexturingMode::kBlendVisible,
+      .candidates = kMaxTextureCandidates,
+      .hysteresis = 0.1,
+      .extended_parts = true}},
 }};
 
 }  // namespace

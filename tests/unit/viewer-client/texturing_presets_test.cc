@@ -18,14 +18,19 @@ TEST(TexturingPresets, EachAddsOneStepAndAllPassCheck) {
   const TexturingOptions blend = TexturingPreset("blend").value();
   EXPECT_EQ(blend.mode, TexturingMode::kBlendVisible);
   EXPECT_GT(blend.hysteresis, 0.0);
-  for (const TexturingOptions& o : {thesis, per_part, occlusion, blend}) EXPECT_NO_THROW(o.Check());
+  EXPECT_FALSE(blend.extended_parts);
+  const TexturingOptions shape = TexturingPreset("shape").value();
+  EXPECT_TRUE(shape.extended_parts);
+  EXPECT_EQ(shape.mode, TexturingMode::kBlendVisible);
+  for (const TexturingOptions& o : {thesis, per_part, occlusion, blend, shape})
+    EXPECT_NO_THROW(o.Check());
 }
 
 TEST(TexturingPresets, UnknownNameIsAUsageErrorListingTheKnownOnes) {
   const auto r = TexturingPreset("Blend");
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().code, "usage");
-  EXPECT_NE(r.error().message.find("thesis, per-part, occlusion, blend"), std::string::npos);
+  EXPECT_NE(r.error().message.find("thesis, per-part, occlusion, blend, shape"), std::string::npos);
 }
 
 }  // namespace
