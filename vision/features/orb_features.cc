@@ -42,7 +42,8 @@ double CpuMs() { return 1000.0 * static_cast<double>(std::clock()) / CLOCKS_PER_
 
 namespace {
 
-int DistancePortable(const uint8_t* a, const uint8_t* b) {
+// Hamming distance of two 32-byte descriptors; inlined into both variants below.
+__attribute__((always_inline)) inline int HammingDistance32(const uint8_t* a, const uint8_t* b) {
   int d = 0;
   for (int i = 0; i < 32; i += 8) {
     uint64_t x, y;
@@ -53,18 +54,13 @@ int DistancePortable(const uint8_t* a, const uint8_t* b) {
   return d;
 }
 
+int DistancePortable(const uint8_t* a, const uint8_t* b) { return HammingDistance32(a, b); }
+
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 // The same with the POPCNT instruction (the build targets baseline x86-64, where
 // __builtin_popcountll is a dozen instructions), chosen at run time.
 __attribute__((target("popcnt"))) int DistancePopcnt(const uint8_t* a, const uint8_t* b) {
-  int d = 0;
-  for (int i = 0; i < 32; i += 8) {
-    uint64_t x, y;
-    std::memcpy(&x, a + i, 8);
-    std::memcpy(&y, b + i, 8);
-    d += __builtin_popcountll(x ^ y);
-  }
-  return d;
+  return HammingDistance32(a, b);
 }
 const bool kHasPopcnt = __builtin_cpu_supports("popcnt");
 #endif

@@ -6,42 +6,14 @@
 #include <limits>
 
 #include "common/error/check.h"
+#include "tests/unit/common/cylinder_raycast.h"
 #include "tests/unit/common/test_skeletons.h"
 
 namespace reenact {
 namespace {
 
+using testing::RayCastCylinders;
 using testing::StandingPerson;
-
-// Ray-casts the side surfaces of posed cylinders into depth (mm) and mask: a constructed
-// subject whose extent past every end joint is known.
-void RayCast(const std::array<std::optional<Cylinder>, kBodyPartCount>& cylinders,
-             const PinholeCamera& cam, ImageDepthMm& depth, ImageGray8& mask) {
-  depth = ImageDepthMm(cam.width, cam.height, 1, 0);
-  mask = ImageGray8(cam.width, cam.height, 1, 0);
-  for (int y = 0; y < cam.height; ++y)
-    for (int x = 0; x < cam.width; ++x) {
-      const Eigen::Vector3d d = cam.Unproject({double(x), double(y)}, 1.0).normalized();
-      double best = std::numeric_limits<double>::max();
-      for (const auto& c : cylinders) {
-        if (!c) continue;
-        const Eigen::Vector3d u = (c->b - c->a).normalized();
-        const Eigen::Vector3d dp = d - d.dot(u) * u;
-        const Eigen::Vector3d ap = -c->a - (-c->a).dot(u) * u;
-        const double qa = dp.squaredNorm(), qb = 2 * dp.dot(ap),
-                     qc = ap.squaredNorm() - c->radius * c->radius;
-        const double disc = qb * qb - 4 * qa * qc;
-        if (disc < 0 || qa < 1e-12) continue;
-        const double t = (-qb - std::sqrt(disc)) / (2 * qa);
-        const double h = (t * d - c->a).dot(u);
-        if (t > 0 && h >= 0 && h <= c->Length() && t < best) best = t;
-      }
-      if (best < std::numeric_limits<double>::max()) {
-        depth.at(x, y) = static_cast<uint16_t>(std::lround(best * d.z() * 1000));
-        mask.at(x, y) = 255;
-      }
-    }
-}
 
 PartExtensions Truth() {
   PartExtensions e{};
@@ -63,7 +35,8 @@ struct Scene {
 
 Scene MakeScene(const PartExtensions& truth) {
   Scene s;
-  RayCast(PoseCylinders(s.skeleton, DefaultRadiusRatios(), truth), s.camera, s.depth, s.mask);
+  RayCastCylinders(PoseCylinders(s.skeleton, DefaultRadiusRatios(), truth), s.camera, s.depth,
+                   s.mask);
   return s;
 }
 

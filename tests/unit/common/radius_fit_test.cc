@@ -1,46 +1,18 @@
 #include "common/model/radius_fit.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
 
-#include <gtest/gtest.h>
-
+#include "tests/unit/common/cylinder_raycast.h"
 #include "tests/unit/common/test_skeletons.h"
 
 namespace reenact {
 namespace {
 
+using testing::RayCastCylinders;
 using testing::StandingPerson;
-
-// Ray-casts the side surfaces of posed cylinders: depth (mm) and mask, independent of the fit.
-void RayCastCylinders(const std::array<std::optional<Cylinder>, kBodyPartCount>& cylinders,
-                      const PinholeCamera& cam, ImageDepthMm& depth, ImageGray8& mask) {
-  depth = ImageDepthMm(cam.width, cam.height, 1, 0);
-  mask = ImageGray8(cam.width, cam.height, 1, 0);
-  for (int y = 0; y < cam.height; ++y)
-    for (int x = 0; x < cam.width; ++x) {
-      const Eigen::Vector3d d = cam.Unproject({double(x), double(y)}, 1.0).normalized();
-      double best = std::numeric_limits<double>::max();
-      for (const auto& c : cylinders) {
-        if (!c) continue;
-        const Eigen::Vector3d u = (c->b - c->a).normalized();
-        // Solve |(t d - a) - ((t d - a).u) u|^2 = r^2 for t.
-        const Eigen::Vector3d dp = d - d.dot(u) * u;
-        const Eigen::Vector3d ap = -c->a - (-c->a).dot(u) * u;
-        const double qa = dp.squaredNorm(), qb = 2 * dp.dot(ap),
-                     qc = ap.squaredNorm() - c->radius * c->radius;
-        const double disc = qb * qb - 4 * qa * qc;
-        if (disc < 0 || qa < 1e-12) continue;
-        const double t = (-qb - std::sqrt(disc)) / (2 * qa);
-        const double h = (t * d - c->a).dot(u);
-        if (t > 0 && h >= 0 && h <= c->Length() && t < best) best = t;
-      }
-      if (best < std::numeric_limits<double>::max()) {
-        depth.at(x, y) = static_cast<uint16_t>(std::lround(best * d.z() * 1000));
-        mask.at(x, y) = 255;
-      }
-    }
-}
 
 TEST(RadiusFit, RecoversRadiusRatiosOfRayCastCylinders) {
   const PinholeCamera cam = PinholeCamera::KinectLike();
@@ -69,16 +41,17 @@ TEST(RadiusFit, RecoversRadiusRatiosOfRayCastCylinders) {
 
 TEST(RadiusFit, EmptyMaskKeepsDefaults) {
   const PinholeCamera cam = PinholeCamera::KinectLike();
-  const RadiusFitResult fit = FitRadiusRatios(StandingPerson(2.5, 0, true), cam,
-                                              ImageDepthMm(640, 480, 1, 0), ImageGray8(640, 480, 1, 0));
+  const RadiusFitResult fit = FitRadiusRatios(
+      StandingPerson(2.5, 0, true), cam, ImageDepthMm(640, 480, 1, 0), ImageGray8(640, 480, 1, 0));
   EXPECT_EQ(fit.fitted_count(), 0);
   EXPECT_EQ(fit.radius_ratio, DefaultRadiusRatios());
 }
 
 TEST(RadiusFit, SkeletonBehindCameraKeepsDefaults) {
   const PinholeCamera cam = PinholeCamera::KinectLike();
-  const RadiusFitResult fit = FitRadiusRatios(StandingPerson(-2.5, 0, true), cam,
-                                              ImageDepthMm(640, 480, 1, 1000), ImageGray8(640, 480, 1, 255));
+  const RadiusFitResult fit =
+      FitRadiusRatios(StandingPerson(-2.5, 0, true), cam, ImageDepthMm(640, 480, 1, 1000),
+                      ImageGray8(640, 480, 1, 255));
   EXPECT_EQ(fit.fitted_count(), 0);
 }
 
@@ -92,7 +65,8 @@ TEST(CylinderModel, ZeroLengthBoneAndMissingJointAreNotPosed) {
   ASSERT_TRUE(cylinders[Index(BodyPart::kLeftForearm)]);
   EXPECT_NEAR(cylinders[Index(BodyPart::kLeftForearm)]->radius,
               cylinders[Index(BodyPart::kLeftForearm)]->Length() *
-                  DefaultRadiusRatios()[Index(BodyPart::kLeftForearm)], 1e-12);
+                  DefaultRadiusRatios()[Index(BodyPart::kLeftForearm)],
+              1e-12);
 }
 
 }  // namespace

@@ -15,6 +15,17 @@
 
 namespace reenact::capture::tracker_test {
 
+// Rotations about the camera axes, radians.
+inline Eigen::Matrix3d Rx(double a) {
+  return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()).matrix();
+}
+inline Eigen::Matrix3d Ry(double a) {
+  return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY()).matrix();
+}
+inline Eigen::Matrix3d Rz(double a) {
+  return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).matrix();
+}
+
 inline constexpr double kSensorHeight = 1.3;
 
 // The floor under the level sensor, normal up (-y).

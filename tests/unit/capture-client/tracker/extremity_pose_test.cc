@@ -17,11 +17,10 @@ using S = BodySegment;
 using tracker_test::FacingSensor;
 using tracker_test::LevelFloor;
 using tracker_test::RenderBodyPoints;
+using tracker_test::Rx;
+using tracker_test::Ry;
 
 constexpr double kPi = std::numbers::pi;
-
-Eigen::Matrix3d Rx(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()).matrix(); }
-Eigen::Matrix3d Ry(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY()).matrix(); }
 
 TEST(ReachLimb, ReachesTargetsOfKnownLimbPoses) {
   const ArticulatedBody body(BodyShape::FromHeight(1.75));

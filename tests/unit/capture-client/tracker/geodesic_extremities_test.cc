@@ -20,12 +20,11 @@ using S = BodySegment;
 using tracker_test::FacingSensor;
 using tracker_test::LevelFloor;
 using tracker_test::RenderBodyPoints;
+using tracker_test::Rx;
+using tracker_test::Ry;
+using tracker_test::Rz;
 
 constexpr double kPi = std::numbers::pi;
-
-Eigen::Matrix3d Rx(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()).matrix(); }
-Eigen::Matrix3d Ry(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY()).matrix(); }
-Eigen::Matrix3d Rz(double a) { return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).matrix(); }
 
 // Bounds. An extremity is the surface point geodesically farthest from the torso centre, so it
 // lies on the end cap of the limb's last capsule: within the cap's radius of the axis end (the
