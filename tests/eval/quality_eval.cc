@@ -20,6 +20,7 @@
 #include "tests/eval/side_by_side.h"
 #include "viewer-client/output/png_writer.h"
 #include "viewer-client/play/viewer_camera.h"
+#include "viewer-client/render/reference_draw.h"
 
 namespace reenact::eval {
 namespace {
@@ -117,7 +118,7 @@ struct QualityHarness::State {
     if (it != texture_of_frame.end()) return it->second;
     const viewer::StoredTexture t = clip.Texture(n, extended_parts);
     const int index = renderer.UploadTexture(t);
-    crops[index] = ReferenceCrop{t.color, t.mask, t.camera, t.part_labels, t.depth_m};
+    crops[index] = viewer::ReferenceCropOf(t);
     frame_of_texture[index] = n;
     return texture_of_frame[{n, extended_parts}] = index;
   }
@@ -200,20 +201,10 @@ Expected<FrameEvaluation> QualityHarness::Evaluate(const QualityMethod& method, 
   REENACT_CHECK(e.frame.cylinder_parts.size() == e.frame.draw.cylinders.size(),
                 "method " + method.name + " must name the body part of every cylinder");
 
-  std::vector<ReferencePart> parts;
-  for (const viewer::CylinderDraw& c : e.frame.draw.cylinders) {
-    ReferencePart part;
-    part.cylinder = Cylinder{c.a, c.b, c.radius};
-    part.color = c.color;
-    part.part = c.part;
-    part.texturing = c.texturing;
-    if (e.frame.draw.textured)
-      for (const viewer::TextureCandidate& t : c.candidates) {
-        const int n = s.frame_of_texture.at(t.texture);
-        part.candidates.push_back({&s.crops.at(t.texture), n, t.stored_from_viewer, t.weight});
-      }
-    parts.push_back(part);
-  }
+  const std::vector<ReferencePart> parts =
+      viewer::ReferencePartsOf(e.frame.draw, [&s](int texture) {
+        return viewer::ReferenceTexture{&s.crops.at(texture), s.frame_of_texture.at(texture)};
+      });
   e.reference = RenderReference(s.camera, parts);
   e.provenance = MeasurePartProvenance(e.reference, e.frame.cylinder_parts,
                                        [&s](int n) { return s.LabelsFor(n); });

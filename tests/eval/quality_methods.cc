@@ -10,11 +10,14 @@ using viewer::TexturingOptions;
 
 // The thesis's pose (the stored skeleton) or the steady track's, drawn with `texturing`;
 // cylinders only.
-QualityMethod::Build Method(bool steady, const TexturingOptions& texturing) {
-  return [steady, texturing](const viewer::Reenactment& clip, int k, const PinholeCamera& camera,
-                             const Eigen::Isometry3d& viewer_from_world,
-                             const std::function<int(int)>& texture_for_frame,
-                             PartSelectionHistory* history) {
+QualityMethod Method(std::string name, std::string summary, bool steady,
+                     const TexturingOptions& texturing) {
+  QualityMethod method{std::move(name), std::move(summary), {}, texturing.extended_parts};
+  method.build = [steady, texturing](const viewer::Reenactment& clip, int k,
+                                     const PinholeCamera& camera,
+                                     const Eigen::Isometry3d& viewer_from_world,
+                                     const std::function<int(int)>& texture_for_frame,
+                                     PartSelectionHistory* history) {
     const Skeleton& pose = steady ? clip.SteadySkeletonInWorld(k) : clip.frame(k).skeleton_in_world;
     viewer::ReenactedFrame frame =
         clip.BuildPosed(k, pose, camera, viewer_from_world, texture_for_frame, texturing, history);
@@ -23,6 +26,7 @@ QualityMethod::Build Method(bool steady, const TexturingOptions& texturing) {
     frame.draw.background = nullptr;
     return frame;
   };
+  return method;
 }
 
 TexturingOptions Preset(std::string_view name) { return viewer::TexturingPreset(name).value(); }
@@ -31,39 +35,42 @@ TexturingOptions Preset(std::string_view name) { return viewer::TexturingPreset(
 
 const std::vector<QualityMethod>& QualityMethods() {
   static const std::vector<QualityMethod> methods = {
-      {"thesis",
-       "the thesis exactly: whole-skeleton Eq. 5 selects one stored frame per output frame, "
-       "Eq. 6-16 map every cylinder onto it, no occlusion handling",
-       Method(false, {})},
-      {"steady",
-       "thesis + steady motion: the posed skeleton from the clip's steady track (skeletons the "
-       "capture flagged interpolated across from their neighbours, every joint One Euro "
-       "filtered: min cutoff 1 Hz, beta 8 Hz per m/s, derivative cutoff 1 Hz, "
-       "forward and backward; common/filter/steady_motion.h); selection and mapping as the thesis",
-       Method(true, {})},
-      {"per-part",
-       "thesis + per-part selection: each body part textured from its own best stored frame, "
-       "ranked by the part's view and the pose of the part and its neighbours "
-       "(common/texture/part_selection.h), among frames where the part lies inside the crop",
-       Method(false, Preset("per-part"))},
-      {"occlusion",
-       "per-part + occlusion-aware texturing: the 3 best frames per part, each fragment "
-       "coloured by the first in which its point is visible (the stored part-label map shows "
-       "the same part and the stored depth agrees; common/render/texturing.h)",
-       Method(false, Preset("occlusion"))},
-      {"blend",
-       "occlusion + blending: each fragment the weighted mean of the visible candidates "
-       "(unstructured-lumigraph weights from the per-part cost, which holds viewing-angle and "
-       "pose difference), with hysteresis 0.1 on the chosen frames",
-       Method(false, Preset("blend"))},
-      {"shape",
-       "blend + a closer shape: the head, forearms and shins extended past their end joints "
-       "(top of the head, hands, feet) by ratios of the bone length fitted at load from the "
-       "stored masks and depth (common/model/extension_fit.h), in the drawn cylinders and the "
-       "stored part-label maps",
-       Method(false, Preset("shape")), true},
-      {"all", "shape + steady motion: every step of issue 9 together",
-       Method(true, Preset("shape")), true},
+      Method("thesis",
+             "the thesis exactly: whole-skeleton Eq. 5 selects one stored frame per output frame, "
+             "Eq. 6-16 map every cylinder onto it, no occlusion handling",
+             false, {}),
+      Method(
+          "steady",
+          "thesis + steady motion: the posed skeleton from the clip's steady track (skeletons the "
+          "capture flagged interpolated across from their neighbours, every joint One Euro "
+          "filtered: min cutoff 1 Hz, beta 8 Hz per m/s, derivative cutoff 1 Hz, "
+          "forward and backward; common/filter/steady_motion.h); selection and mapping as the "
+          "thesis",
+          true, {}),
+      Method("per-part",
+             "thesis + per-part selection: each body part textured from its own best stored frame, "
+             "ranked by the part's view and the pose of the part and its neighbours "
+             "(common/texture/part_selection.h), among frames where the part lies inside the crop",
+             false, Preset("per-part")),
+      Method("occlusion",
+             "per-part + occlusion-aware texturing: the 3 best frames per part, each fragment "
+             "coloured by the first in which its point is visible (the stored part-label map shows "
+             "the same part and the stored depth agrees; common/render/texturing.h)",
+             false, Preset("occlusion")),
+      Method(
+          "blend",
+          "occlusion + blending: each fragment the weighted mean of the visible candidates "
+          "(unstructured-lumigraph weights from the per-part cost, which holds viewing-angle and "
+          "pose difference), with hysteresis 0.1 on the chosen frames",
+          false, Preset("blend")),
+      Method(
+          "shape",
+          "blend + a closer shape: the head, forearms and shins extended past their end joints "
+          "(top of the head, hands, feet) by ratios of the bone length fitted at load from the "
+          "stored masks and depth (common/model/extension_fit.h), in the drawn cylinders and the "
+          "stored part-label maps",
+          false, Preset("shape")),
+      Method("all", "shape + steady motion: every step of issue 9 together", true, Preset("shape")),
   };
   return methods;
 }

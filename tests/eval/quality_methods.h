@@ -29,7 +29,7 @@ struct QualityMethod {
   // history (may be null) carries per-part selection from one output frame to the next of the
   // same viewpoint, for hysteresis.
   Build build;
-  // The method draws the clip's extended parts (TexturingOptions::extended_parts): its stored
+  // The method draws the clip's extended parts (its TexturingOptions::extended_parts): its stored
   // textures carry part-label maps of that shape.
   bool extended_parts = false;
 };

@@ -9,11 +9,13 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/integration/expect_error.h"
 #include "tests/integration/process.h"
 
 namespace reenact {
 namespace {
 
+using testing::ExpectOneLineError;
 using testing::RunProcess;
 using testing::TempDir;
 
@@ -22,16 +24,6 @@ using testing::kCapture;
 using testing::kServer;
 using testing::kViewer;
 constexpr auto kQuick = std::chrono::seconds(30);
-
-// One line of error text (a trailing newline allowed).
-void ExpectOneLineError(const testing::ProcessResult& r, const std::string& needle) {
-  EXPECT_FALSE(r.timed_out) << "hung";
-  EXPECT_NE(r.exit_code, 0);
-  std::string err = r.err;
-  while (!err.empty() && err.back() == '\n') err.pop_back();
-  EXPECT_EQ(err.find('\n'), std::string::npos) << "more than one line:\n" << r.err;
-  EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
-}
 
 class ListeningSocket {
  public:

@@ -9,12 +9,14 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 
+#include "tests/integration/expect_error.h"
 #include "tests/integration/process.h"
 
 namespace reenact {
 namespace {
 
 using testing::BackgroundProcess;
+using testing::ExpectOneLineError;
 using testing::kBin;
 using testing::kCapture;
 using testing::kServer;
@@ -30,14 +32,6 @@ std::string Field(const std::string& text, const std::string& pattern) {
   return std::regex_search(text, m, std::regex(pattern)) ? m[1].str() : "";
 }
 
-void ExpectOneLineError(const testing::ProcessResult& r, const std::string& needle) {
-  EXPECT_FALSE(r.timed_out) << "hung";
-  EXPECT_NE(r.exit_code, 0);
-  std::string err = r.err;
-  while (!err.empty() && err.back() == '\n') err.pop_back();
-  EXPECT_EQ(err.find('\n'), std::string::npos) << "more than one line:\n" << r.err;
-  EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
-}
 
 TEST(ViewerAr, SyntheticCameraOverAPublishedClip) {
   TempDir tmp;

@@ -17,6 +17,7 @@
 #include "proto/clip/clip_directory.h"
 #include "viewer-client/play/reenactment.h"
 #include "viewer-client/play/viewer_camera.h"
+#include "viewer-client/render/reference_draw.h"
 #include "viewer-client/render/renderer.h"
 
 namespace reenact::viewer {
@@ -74,6 +75,31 @@ Agreement Compare(const RenderedFrame& gl, const ReferenceRender& ref) {
   return a;
 }
 
+// Uploads each stored frame of the clip once and keeps the crop the reference samples.
+struct UploadedFrames {
+  const Reenactment& clip;
+  Renderer& renderer;
+  std::map<int, int> texture_of_frame, frame_of_texture;
+  std::map<int, ReferenceCrop> crop_of_texture;
+
+  int operator()(int n) {
+    auto it = texture_of_frame.find(n);
+    if (it == texture_of_frame.end()) {
+      const StoredTexture t = clip.Texture(n);
+      it = texture_of_frame.emplace(n, renderer.UploadTexture(t)).first;
+      frame_of_texture[it->second] = n;
+      crop_of_texture[it->second] = ReferenceCropOf(t);
+    }
+    return it->second;
+  }
+  ReferenceRender RenderReferenceOf(const FrameDraw& draw) const {
+    return RenderReference(
+        draw.camera, ReferencePartsOf(draw, [this](int texture) {
+          return ReferenceTexture{&crop_of_texture.at(texture), frame_of_texture.at(texture)};
+        }));
+  }
+};
+
 class GlReferenceAgreement : public ::testing::TestWithParam<double> {};
 
 TEST_P(GlReferenceAgreement, ReenactedFrameAgreesWithTheCpuReference) {
@@ -82,17 +108,8 @@ TEST_P(GlReferenceAgreement, ReenactedFrameAgreesWithTheCpuReference) {
   Expected<Renderer> renderer = Renderer::CreateHeadless(kWidth, kHeight);
   ASSERT_TRUE(renderer.ok()) << renderer.error().message;
 
-  std::map<int, int> texture_of_frame;
-  std::map<int, ReferenceCrop> crop_of_frame;
-  auto texture_for_frame = [&](int n) {
-    auto it = texture_of_frame.find(n);
-    if (it == texture_of_frame.end()) {
-      const StoredTexture t = clip.Texture(n);
-      crop_of_frame[n] = ReferenceCrop{t.color, t.mask, t.camera, t.part_labels, t.depth_m};
-      it = texture_of_frame.emplace(n, renderer->UploadTexture(t)).first;
-    }
-    return it->second;
-  };
+  UploadedFrames uploaded{clip, *renderer, {}, {}, {}};
+  const auto texture_for_frame = [&uploaded](int n) { return uploaded(n); };
 
   OrbitCameraOptions orbit;
   orbit.angle_deg = GetParam();
@@ -104,23 +121,7 @@ TEST_P(GlReferenceAgreement, ReenactedFrameAgreesWithTheCpuReference) {
     frame.draw.bones.clear();
     ASSERT_GE(frame.texture_frame, 0);
     const RenderedFrame gl = renderer->Render(frame.draw);
-
-    std::vector<ReferencePart> parts;
-    std::map<int, int> frame_of_texture;
-    for (const auto& [n, t] : texture_of_frame) frame_of_texture[t] = n;
-    for (const CylinderDraw& c : frame.draw.cylinders) {
-      ReferencePart part;
-      part.cylinder = Cylinder{c.a, c.b, c.radius};
-      part.color = c.color;
-      part.part = c.part;
-      part.texturing = c.texturing;
-      for (const TextureCandidate& t : c.candidates) {
-        const int n = frame_of_texture.at(t.texture);
-        part.candidates.push_back({&crop_of_frame.at(n), n, t.stored_from_viewer, t.weight});
-      }
-      parts.push_back(part);
-    }
-    const ReferenceRender ref = RenderReference(camera, parts);
+    const ReferenceRender ref = uploaded.RenderReferenceOf(frame.draw);
 
     const Agreement a = Compare(gl, ref);
     EXPECT_GT(a.both, 5000) << "k " << k;  // the subject fills a good part of the view
@@ -148,20 +149,8 @@ TEST_P(GlReferenceModeAgreement, CandidatesAndVisibilityAgreeWithTheCpuReference
   Expected<Renderer> renderer = Renderer::CreateHeadless(kWidth, kHeight);
   ASSERT_TRUE(renderer.ok()) << renderer.error().message;
 
-  std::map<int, int> texture_of_frame, frame_of_texture;
-  std::map<int, ReferenceCrop> crop_of_frame;
-  auto texture_for_frame = [&](int n) {
-    auto it = texture_of_frame.find(n);
-    if (it == texture_of_frame.end()) {
-      const StoredTexture t = clip.Texture(n);
-      EXPECT_FALSE(t.part_labels.empty());
-      EXPECT_FALSE(t.depth_m.empty());
-      crop_of_frame[n] = ReferenceCrop{t.color, t.mask, t.camera, t.part_labels, t.depth_m};
-      it = texture_of_frame.emplace(n, renderer->UploadTexture(t)).first;
-      frame_of_texture[it->second] = n;
-    }
-    return it->second;
-  };
+  UploadedFrames uploaded{clip, *renderer, {}, {}, {}};
+  const auto texture_for_frame = [&uploaded](int n) { return uploaded(n); };
 
   OrbitCameraOptions orbit;
   orbit.angle_deg = GetParam().angle_deg;
@@ -187,21 +176,11 @@ TEST_P(GlReferenceModeAgreement, CandidatesAndVisibilityAgreeWithTheCpuReference
       }
     }
     const RenderedFrame gl = renderer->Render(frame.draw);
-
-    std::vector<ReferencePart> parts;
-    for (const CylinderDraw& c : frame.draw.cylinders) {
-      ReferencePart part;
-      part.cylinder = Cylinder{c.a, c.b, c.radius};
-      part.color = c.color;
-      part.part = c.part;
-      part.texturing = c.texturing;
-      for (const TextureCandidate& t : c.candidates) {
-        const int n = frame_of_texture.at(t.texture);
-        part.candidates.push_back({&crop_of_frame.at(n), n, t.stored_from_viewer, t.weight});
-      }
-      parts.push_back(part);
+    const ReferenceRender ref = uploaded.RenderReferenceOf(frame.draw);
+    for (const auto& [texture, crop] : uploaded.crop_of_texture) {
+      EXPECT_FALSE(crop.part_labels.empty());  // every stored frame carries its visibility maps
+      EXPECT_FALSE(crop.depth_m.empty());
     }
-    const ReferenceRender ref = RenderReference(camera, parts);
 
     // The modes must act: pixels coloured past candidate 0, or blended.
     int past_first = 0, blended = 0;
@@ -224,12 +203,11 @@ TEST_P(GlReferenceModeAgreement, CandidatesAndVisibilityAgreeWithTheCpuReference
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Modes, GlReferenceModeAgreement,
-    ::testing::Values(ModeCase{TexturingMode::kFirstVisible, 0.0},
-                      ModeCase{TexturingMode::kFirstVisible, 90.0},
-                      ModeCase{TexturingMode::kBlendVisible, 0.0},
-                      ModeCase{TexturingMode::kBlendVisible, 90.0}));
+INSTANTIATE_TEST_SUITE_P(Modes, GlReferenceModeAgreement,
+                         ::testing::Values(ModeCase{TexturingMode::kFirstVisible, 0.0},
+                                           ModeCase{TexturingMode::kFirstVisible, 90.0},
+                                           ModeCase{TexturingMode::kBlendVisible, 0.0},
+                                           ModeCase{TexturingMode::kBlendVisible, 90.0}));
 
 }  // namespace
 }  // namespace reenact::viewer

@@ -6,8 +6,8 @@
 
 #include <cmath>
 #include <numbers>
-#include <vector>
 #include <opencv2/imgproc.hpp>
+#include <vector>
 
 #include "capture-client/map/background_map_builder.h"
 #include "capture-client/map/virtual_views.h"
@@ -52,21 +52,34 @@ const Maps& TestMaps() {
   return maps;
 }
 
+// The scene's frame `frame` seen from the orbit turned `angle_deg` about the subject (pivot),
+// 5 cm above the sensor: the true pose and the grey image the relocaliser takes.
+struct OrbitView {
+  Eigen::Isometry3d world_from_viewer;
+  cv::Mat gray;
+};
+OrbitView RenderOrbitView(const Maps& m, double angle_deg, int frame) {
+  OrbitCameraOptions orbit;
+  orbit.angle_deg = angle_deg;
+  orbit.height_offset_m = 0.05;
+  const auto truth =
+      OrbitWorldFromViewer(m.scene.world_from_sensor(0), m.pivot, m.scene.world_up(), orbit);
+  REENACT_CHECK(truth.has_value(), "the orbit camera cannot be placed");
+  const capture::SyntheticView view = m.scene.Render(frame, m.scene.sensor_camera(), *truth);
+  const cv::Mat rgb(view.color.height, view.color.width, CV_8UC3,
+                    const_cast<uint8_t*>(view.color.data.data()));
+  OrbitView out{*truth, {}};
+  cv::cvtColor(rgb, out.gray, cv::COLOR_RGB2GRAY);
+  return out;
+}
+
 TEST(RelocaliserVirtualViews, FarAroundTheSubjectTheViewsKeepTheViewerFound) {
   const Maps& m = TestMaps();
   ASSERT_GT(m.with_views.points.size(), 2 * m.plain.points.size());
   for (double angle : {-40.0, 40.0}) {
-    OrbitCameraOptions orbit;
-    orbit.angle_deg = angle;
-    orbit.height_offset_m = 0.05;
-    const auto truth =
-        OrbitWorldFromViewer(m.scene.world_from_sensor(0), m.pivot, m.scene.world_up(), orbit);
-    ASSERT_TRUE(truth.has_value());
-    const capture::SyntheticView view = m.scene.Render(45, m.scene.sensor_camera(), *truth);
-    const cv::Mat rgb(view.color.height, view.color.width, CV_8UC3,
-                      const_cast<uint8_t*>(view.color.data.data()));
-    cv::Mat gray;
-    cv::cvtColor(rgb, gray, cv::COLOR_RGB2GRAY);
+    const OrbitView view = RenderOrbitView(m, angle, 45);
+    const cv::Mat& gray = view.gray;
+    const Eigen::Isometry3d& truth = view.world_from_viewer;
     int inliers[2] = {0, 0};
     for (int with_views = 0; with_views <= 1; ++with_views) {
       auto reloc =
@@ -80,8 +93,8 @@ TEST(RelocaliserVirtualViews, FarAroundTheSubjectTheViewsKeepTheViewerFound) {
       // The bounds of relocaliser_test.cc (4 cm, 0.5 degrees: twice what a least-squares fit
       // from the true matches lands at 20 degrees around).
       const Eigen::Isometry3d estimate = result->viewer_from_world->inverse();
-      EXPECT_LT((estimate.translation() - truth->translation()).norm(), 0.04) << angle;
-      EXPECT_LT(Eigen::AngleAxisd(truth->linear().transpose() * estimate.linear()).angle() * 180 /
+      EXPECT_LT((estimate.translation() - truth.translation()).norm(), 0.04) << angle;
+      EXPECT_LT(Eigen::AngleAxisd(truth.linear().transpose() * estimate.linear()).angle() * 180 /
                     std::numbers::pi,
                 0.5)
           << angle;
@@ -107,17 +120,9 @@ TEST(RelocaliserVirtualViews, MoreViewerFeaturesGiveMoreInliersFarAround) {
   double squared_error_m2[2] = {0, 0};
   const std::vector<double> angles = {-45, -40, -35, 35, 40, 45};
   for (double angle : angles) {
-    OrbitCameraOptions orbit;
-    orbit.angle_deg = angle;
-    orbit.height_offset_m = 0.05;
-    const auto truth =
-        OrbitWorldFromViewer(m.scene.world_from_sensor(0), m.pivot, m.scene.world_up(), orbit);
-    ASSERT_TRUE(truth.has_value());
-    const capture::SyntheticView view = m.scene.Render(30, m.scene.sensor_camera(), *truth);
-    const cv::Mat rgb(view.color.height, view.color.width, CV_8UC3,
-                      const_cast<uint8_t*>(view.color.data.data()));
-    cv::Mat gray;
-    cv::cvtColor(rgb, gray, cv::COLOR_RGB2GRAY);
+    const OrbitView view = RenderOrbitView(m, angle, 30);
+    const cv::Mat& gray = view.gray;
+    const Eigen::Isometry3d& truth = view.world_from_viewer;
     for (int k = 0; k < 2; ++k) {
       auto reloc = Relocaliser::Create(m.with_views, m.scene.sensor_camera(),
                                        k == 0 ? fewer : RelocaliserOptions{});
@@ -127,9 +132,9 @@ TEST(RelocaliserVirtualViews, MoreViewerFeaturesGiveMoreInliersFarAround) {
       ASSERT_TRUE(result->viewer_from_world.has_value()) << angle << ": " << result->reason;
       inliers[k] += result->inliers;
       const Eigen::Isometry3d estimate = result->viewer_from_world->inverse();
-      squared_error_m2[k] += (estimate.translation() - truth->translation()).squaredNorm();
+      squared_error_m2[k] += (estimate.translation() - truth.translation()).squaredNorm();
       if (k == 1) {
-        EXPECT_LT((estimate.translation() - truth->translation()).norm(), 0.04) << angle;
+        EXPECT_LT((estimate.translation() - truth.translation()).norm(), 0.04) << angle;
       }
     }
   }

@@ -1,0 +1,30 @@
+#include "viewer-client/render/reference_draw.h"
+
+namespace reenact::viewer {
+
+ReferenceCrop ReferenceCropOf(const StoredTexture& t) {
+  return ReferenceCrop{t.color, t.mask, t.camera, t.part_labels, t.depth_m};
+}
+
+std::vector<ReferencePart> ReferencePartsOf(
+    const FrameDraw& frame, const std::function<ReferenceTexture(int texture)>& texture) {
+  std::vector<ReferencePart> parts;
+  parts.reserve(frame.cylinders.size());
+  for (const CylinderDraw& c : frame.cylinders) {
+    ReferencePart part;
+    part.cylinder = Cylinder{c.a, c.b, c.radius};
+    part.color = c.color;
+    part.part = c.part;
+    part.texturing = c.texturing;
+    if (frame.textured)
+      for (const TextureCandidate& t : c.candidates) {
+        const ReferenceTexture source = texture(t.texture);
+        part.candidates.push_back(
+            {source.crop, source.stored_frame, t.stored_from_viewer, t.weight});
+      }
+    parts.push_back(std::move(part));
+  }
+  return parts;
+}
+
+}  // namespace reenact::viewer
