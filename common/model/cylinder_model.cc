@@ -22,8 +22,41 @@ Joint EndJoint(BodyPart part) {
   return part == BodyPart::kHead ? Joint::kHead : PartJoints(part).second;
 }
 
+bool PartShape::IsCylinder() const {
+  for (int k = 0; k < kShapeRings; ++k)
+    if (width[k] != 1.0 || depth[k] != 1.0) return false;
+  return true;
+}
+
+bool PartShape::IsCircular() const { return width == depth; }
+
+std::optional<Eigen::Vector3d> PartWidthDirection(const Skeleton& skeleton, BodyPart part) {
+  Joint left, right;
+  if (part == BodyPart::kUpperTorso) {
+    left = Joint::kLeftShoulder;
+    right = Joint::kRightShoulder;
+  } else if (part == BodyPart::kLowerTorso) {
+    left = Joint::kLeftHip;
+    right = Joint::kRightHip;
+  } else {
+    return std::nullopt;
+  }
+  const auto [ja, jb] = PartJoints(part);
+  if (!skeleton.Has(ja) || !skeleton.Has(jb) || !skeleton.Has(left) || !skeleton.Has(right))
+    return std::nullopt;
+  const Eigen::Vector3d axis = skeleton[jb] - skeleton[ja];
+  const Eigen::Vector3d across = skeleton[left] - skeleton[right];
+  const double axis_norm = axis.norm(), across_norm = across.norm();
+  if (!(axis_norm > 0) || !(across_norm > 0)) return std::nullopt;
+  const Eigen::Vector3d z = axis / axis_norm;
+  const Eigen::Vector3d w = across / across_norm - z.dot(across / across_norm) * z;
+  if (!(w.norm() > 1e-6)) return std::nullopt;
+  return Eigen::Vector3d(w.normalized());
+}
+
 std::optional<Cylinder> PoseCylinder(const Skeleton& skeleton, BodyPart part,
-                                     const RadiusRatios& ratios, const PartExtensions& extensions) {
+                                     const RadiusRatios& ratios, const PartExtensions& extensions,
+                                     const PartShapes& shapes) {
   const double ratio = ratios[Index(part)];
   const double extension = extensions[Index(part)];
   REENACT_CHECK(std::isfinite(ratio) && ratio >= 0, "radius ratio must be finite and >= 0");
@@ -40,14 +73,28 @@ std::optional<Cylinder> PoseCylinder(const Skeleton& skeleton, BodyPart part,
                                                          : Eigen::Vector3d(c.b - c.a);
     (EndJoint(part) == ja ? c.a : c.b) += extension * outward;
   }
+  c.shape = shapes[Index(part)];
+  for (int k = 0; k < kShapeRings; ++k)
+    REENACT_CHECK(std::isfinite(c.shape.width[k]) && c.shape.width[k] > 0 &&
+                      std::isfinite(c.shape.depth[k]) && c.shape.depth[k] > 0,
+                  "part shape rings must be finite and > 0");
+  if (!c.shape.IsCircular()) {
+    c.width_direction = PartWidthDirection(skeleton, part);
+    if (!c.width_direction) {
+      for (int k = 0; k < kShapeRings; ++k)
+        c.shape.width[k] = c.shape.depth[k] = std::sqrt(c.shape.width[k] * c.shape.depth[k]);
+    }
+  }
   return c;
 }
 
-std::array<std::optional<Cylinder>, kBodyPartCount> PoseCylinders(
-    const Skeleton& skeleton, const RadiusRatios& ratios, const PartExtensions& extensions) {
+std::array<std::optional<Cylinder>, kBodyPartCount> PoseCylinders(const Skeleton& skeleton,
+                                                                  const RadiusRatios& ratios,
+                                                                  const PartExtensions& extensions,
+                                                                  const PartShapes& shapes) {
   std::array<std::optional<Cylinder>, kBodyPartCount> out;
   for (int p = 0; p < kBodyPartCount; ++p)
-    out[p] = PoseCylinder(skeleton, static_cast<BodyPart>(p), ratios, extensions);
+    out[p] = PoseCylinder(skeleton, static_cast<BodyPart>(p), ratios, extensions, shapes);
   return out;
 }
 

@@ -30,10 +30,34 @@ Joint EndJoint(BodyPart part);
 // Typical adult proportions (radius / bone length), used where a part could not be fitted.
 RadiusRatios DefaultRadiusRatios();
 
+// Cross-sections along a part's drawn axis (issue 9, a closer shape: radius rings and an
+// elliptic torso). kShapeRings rings at t_k = k / (kShapeRings - 1) of the drawn axis, t = 0 at
+// the cylinder's a end and t = 1 at its b end (past the end joint where extended). Ring k is an
+// ellipse with semi-axes width[k] * radius along the cylinder's width direction and
+// depth[k] * radius along axis x width, in the right-handed frame (x width, y depth, z the
+// axis a -> b). Between two rings the surface is linear in t (a ruled surface, drawn
+// tessellated). All ones (the default): the thesis's cylinder. Values are finite and > 0.
+inline constexpr int kShapeRings = 5;
+
+struct PartShape {
+  std::array<double, kShapeRings> width{1, 1, 1, 1, 1};
+  std::array<double, kShapeRings> depth{1, 1, 1, 1, 1};
+
+  bool IsCylinder() const;  // every ring 1 x 1
+  bool IsCircular() const;  // width[k] == depth[k] at every ring (tapered at most)
+};
+
+// Indexed by Index(BodyPart). Fitted by cross_section_fit.h.
+using PartShapes = std::array<PartShape, kBodyPartCount>;
+
 struct Cylinder {
   Eigen::Vector3d a;  // axis end at joint a (PartJoints(part).first), same frame as the skeleton
   Eigen::Vector3d b;  // axis end at joint b
   double radius = 0;  // metres
+  PartShape shape{};  // cross-sections (default: the plain cylinder)
+  // Unit vector orthogonal to the axis along which the shape's width runs; nullopt: any
+  // (the renderers' helper rule, cylinder_mesh.h). Set by PoseCylinder for an elliptic part.
+  std::optional<Eigen::Vector3d> width_direction{};
 
   double Length() const { return (b - a).norm(); }
 };
@@ -41,16 +65,27 @@ struct Cylinder {
 // Bones shorter than this (metres) are degenerate: their cylinder is not posed.
 inline constexpr double kMinBoneLength = 1e-4;
 
+// The body's left-to-right direction a part's width runs along: l_shoulder - r_shoulder for
+// the upper torso, l_hip - r_hip for the lower torso, made orthogonal to the part's axis and
+// unit; nullopt for every other part, when a joint is missing, or when that line is within
+// 1e-6 (sine of the angle) of parallel to the axis.
+std::optional<Eigen::Vector3d> PartWidthDirection(const Skeleton& skeleton, BodyPart part);
+
 // Cylinder of one part posed from a skeleton; nullopt if a joint is missing or the bone is
 // shorter than kMinBoneLength. With extensions, the axis end at EndJoint(part) moves outwards
 // along the axis by extensions[part] * bone length; the radius stays bone length * ratio.
-// Preconditions (CHECK): ratio and extension finite and >= 0.
+// With shapes, the cylinder carries shapes[part]; a part that is not IsCircular() gets
+// width_direction = PartWidthDirection(skeleton, part), and where that is nullopt it is drawn
+// circular instead: width[k] = depth[k] = sqrt(width[k] depth[k]) (same cross-section area).
+// Preconditions (CHECK): ratio and extension finite and >= 0; shape values finite and > 0.
 std::optional<Cylinder> PoseCylinder(const Skeleton& skeleton, BodyPart part,
                                      const RadiusRatios& ratios,
-                                     const PartExtensions& extensions = {});
+                                     const PartExtensions& extensions = {},
+                                     const PartShapes& shapes = {});
 
 // All parts, indexed by Index(BodyPart).
 std::array<std::optional<Cylinder>, kBodyPartCount> PoseCylinders(
-    const Skeleton& skeleton, const RadiusRatios& ratios, const PartExtensions& extensions = {});
+    const Skeleton& skeleton, const RadiusRatios& ratios, const PartExtensions& extensions = {},
+    const PartShapes& shapes = {});
 
 }  // namespace reenact

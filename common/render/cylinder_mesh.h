@@ -1,22 +1,48 @@
 #pragma once
 // The tessellated unit cylinder that every renderer of the cylinder body model draws, so that
-// the GL renderer (viewer-client/render/renderer.h) and the CPU reference renderer
-// (common/render/reference_renderer.h) rasterise the very same triangles.
+// the GL renderer (viewer-client/render/renderer.h), the CPU reference renderer
+// (common/render/reference_renderer.h) and the part-label map of a shaped part
+// (common/texture/part_label_map.h) rasterise the very same triangles.
 //
-// The cylinder has radius 1 and runs along +z from z = 0 to z = 1 in its own frame. It is
-// closed: a side made of `segments` flat quads (two triangles each) and two capping fans.
-// Side vertices carry radial normals (x, y, 0), cap vertices the cap normal (0, 0, -1) at
-// z = 0 and (0, 0, +1) at z = 1, so sides and caps do not share vertices. Every triangle is
-// wound counter-clockwise seen from outside, in a right-handed frame.
+// The unit cylinder has radius 1 and runs along +z from z = 0 to z = 1 in its own frame. It
+// is closed: a side of kShapeRings rings (cylinder_model.h) at z_k = k / (kShapeRings - 1),
+// each of `segments` vertices at angles 2 pi i / segments, joined by kShapeRings - 1 bands of
+// `segments` quads (two triangles each), and two capping fans. Side vertices carry radial
+// normals (x, y, 0), cap vertices the cap normal (0, 0, -1) at z = 0 and (0, 0, +1) at z = 1,
+// so sides and caps do not share vertices. Every triangle is wound counter-clockwise seen from
+// outside, in a right-handed frame. Every vertex lies exactly on a ring: z == z_k in float.
 //
-// Triangle order: triangles [0, 2 * segments) are the side (quad i is triangles 2i, 2i + 1,
-// between ring angles 2 pi i / segments and 2 pi (i + 1) / segments), then segments
-// triangles of the z = 0 cap, then segments triangles of the z = 1 cap.
+// Vertex order: side vertex i of ring k is k * segments + i; then the z = 0 cap's centre and
+// its `segments` ring vertices, then the z = 1 cap's. Sizes: (kShapeRings + 2) segments + 2
+// vertices, 2 kShapeRings segments triangles.
+// Triangle order: band k (between rings k and k + 1), quad i (between angles i and i + 1) is
+// triangles 2 (k segments + i) and 2 (k segments + i) + 1, for k in [0, kShapeRings - 1);
+// then `segments` triangles of the z = 0 cap, then `segments` triangles of the z = 1 cap.
+//
+// Shaped drawing (a PartShape, cylinder_model.h): a vertex (x, y, z) on ring k is placed at
+// the shaped unit point (width[k] x, depth[k] y, z) before ViewerFromUnitCylinder; so ring k
+// is an ellipse with semi-axes width[k] and depth[k] (times the radius) along the frame's x
+// and y axes, and each band is linear in z between two rings. A plain cylinder (all ones)
+// draws the unit mesh unchanged.
+//
+// Normals (the rule both renderers use for the untextured Lambert shading):
+//   - cap vertices: the cap normal (0, 0, -+1);
+//   - side vertex at angle (c, s) = (cos, sin) on ring k: the normal of the smooth surface
+//     (W(z) c, D(z) s, z) whose ring slopes are W'_k, D'_k (RingSlope: central differences,
+//     one-sided at the end rings), i.e. n = (D_k c, W_k s, -(W_k D'_k s^2 + D_k W'_k c^2))
+//     in the unit frame (W = width, D = depth); (c, s, 0) for a plain cylinder;
+//   - into the viewer frame with NormalFromUnitCylinder (the inverse transpose of the linear
+//     part of viewer_from_cylinder), and interpolated over triangles unnormalised like every
+//     attribute; the shading normalises the interpolated normal.
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
+
+#include "common/model/cylinder_model.h"
 
 namespace reenact {
 
@@ -29,18 +55,50 @@ struct CylinderMesh {
   std::vector<uint32_t> indices;           // triangle list, three per triangle
 };
 
-// Builds the closed unit cylinder with `segments` sides. Precondition (CHECK): segments >= 3.
-// Sizes: 4 * segments + 2 vertices, 4 * segments triangles.
+// Builds the closed unit cylinder with `segments` sides and kShapeRings rings. Precondition
+// (CHECK): segments >= 3.
 CylinderMesh MakeUnitCylinderMesh(int segments);
 
-// viewer_from_cylinder: the affine map (bottom row 0 0 0 1) that places the unit cylinder on
-// the axis a -> b with the given radius: cylinder z = 0 at a, z = 1 at b, and the cylinder's
-// x, y axes scaled by radius onto an orthonormal pair perpendicular to the axis,
-//   z_hat = (b - a) / |b - a|, x_hat = normalise(z_hat x h), y_hat = z_hat x x_hat,
-// with helper h = unit x unless |z_hat.x| >= 0.9, then unit y. The choice of x_hat fixes
-// where the tessellation's vertices lie around the axis, so both renderers must use this.
-// Precondition: a, b finite and |b - a| > 0 (a zero-length axis yields non-finite entries).
-Eigen::Matrix4d ViewerFromUnitCylinder(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                       double radius);
+// The ring a unit mesh vertex lies on: round(z (kShapeRings - 1)) clamped to
+// [0, kShapeRings - 1].
+int RingOfUnitVertex(double z);
+
+// Slope dv/dz of a ring profile at ring k, z_k = k / (kShapeRings - 1): the central difference
+// (v[k + 1] - v[k - 1]) / (z_{k+1} - z_{k-1}) inside, one-sided at k = 0 and the last ring.
+// Precondition (CHECK): 0 <= k < kShapeRings.
+double RingSlope(const std::array<double, kShapeRings>& values, int k);
+
+// A unit mesh vertex (on ring RingOfUnitVertex(z)) placed on the shaped unit surface:
+// (width[k] x, depth[k] y, z).
+Eigen::Vector3d ShapedUnitPosition(const PartShape& shape, const Eigen::Vector3d& unit_position);
+
+// The unit-frame normal (not unit length) of the shaped surface at a unit mesh vertex with
+// its mesh normal: the rule of the header comment. A normal with a non-zero z is a cap's and
+// is returned as is.
+Eigen::Vector3d ShapedUnitNormal(const PartShape& shape, const Eigen::Vector3d& unit_position,
+                                 const Eigen::Vector3d& unit_normal);
+
+// viewer_from_cylinder: the affine map (bottom row 0 0 0 1) that places the (shaped) unit
+// cylinder on the axis a -> b with the given radius: cylinder z = 0 at a, z = 1 at b, and the
+// cylinder's x, y axes scaled by radius onto an orthonormal pair perpendicular to the axis,
+//   z_hat = (b - a) / |b - a|, y_hat = z_hat x x_hat,
+//   x_hat = normalise(w - (w . z_hat) z_hat) for a width direction w (the shape's width runs
+//           along it, its depth along z_hat x w), if given and that has norm >= 1e-9 |w|;
+//   x_hat = normalise(z_hat x h) otherwise (the helper rule), with h = unit x unless
+//           |z_hat.x| >= 0.9, then unit y.
+// The choice of x_hat fixes where the tessellation's vertices lie around the axis, so every
+// renderer must use this. Precondition: a, b (and w) finite and |b - a| > 0 (a zero-length
+// axis yields non-finite entries).
+Eigen::Matrix4d ViewerFromUnitCylinder(
+    const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius,
+    const std::optional<Eigen::Vector3d>& width_direction = std::nullopt);
+
+// The same placement for a Cylinder: its axis, radius and width direction.
+Eigen::Matrix4d ViewerFromUnitCylinder(const Cylinder& cylinder);
+
+// The inverse transpose of viewer_from_cylinder's linear part (columns x_hat / radius,
+// y_hat / radius, z_hat / |b - a|): maps unit-frame normals to viewer-frame normals.
+// Precondition: viewer_from_cylinder from ViewerFromUnitCylinder with radius > 0.
+Eigen::Matrix3d NormalFromUnitCylinder(const Eigen::Matrix4d& viewer_from_cylinder);
 
 }  // namespace reenact

@@ -40,6 +40,12 @@ void CheckPart(const ReferencePart& part, size_t index) {
   const Cylinder& c = part.cylinder;
   REENACT_CHECK(c.a.allFinite() && c.b.allFinite() && std::isfinite(c.radius) && c.radius > 0,
                 name + "axis end points must be finite and the radius positive");
+  for (int k = 0; k < kShapeRings; ++k)
+    REENACT_CHECK(std::isfinite(c.shape.width[k]) && c.shape.width[k] > 0 &&
+                      std::isfinite(c.shape.depth[k]) && c.shape.depth[k] > 0,
+                  name + "shape rings must be finite and > 0");
+  REENACT_CHECK(!c.width_direction || c.width_direction->allFinite(),
+                name + "width direction must be finite");
   REENACT_CHECK(part.color.allFinite(), name + "colour must be finite");
   REENACT_CHECK(part.candidates.size() <= static_cast<size_t>(kMaxTextureCandidates),
                 name + "at most " + std::to_string(kMaxTextureCandidates) + " texture candidates");
@@ -204,12 +210,15 @@ ReferenceRender RenderReference(const PinholeCamera& camera, std::span<const Ref
     const ReferencePart& part = parts[index];
     const Cylinder& c = part.cylinder;
     if ((c.b - c.a).norm() < 1e-12) continue;
-    const Eigen::Matrix4d viewer_from_cylinder = ViewerFromUnitCylinder(c.a, c.b, c.radius);
+    const Eigen::Matrix4d viewer_from_cylinder = ViewerFromUnitCylinder(c);
     const Eigen::Matrix3d linear = viewer_from_cylinder.topLeftCorner<3, 3>();
+    const Eigen::Matrix3d normal_linear = NormalFromUnitCylinder(viewer_from_cylinder);
     const Eigen::Vector3d offset = viewer_from_cylinder.topRightCorner<3, 1>();
     for (size_t v = 0; v < vertices.size(); ++v) {
-      vertices[v].position = linear * mesh.positions[v].cast<double>() + offset;
-      const Eigen::Vector3d normal = linear * mesh.normals[v].cast<double>();
+      const Eigen::Vector3d unit = mesh.positions[v].cast<double>();
+      vertices[v].position = linear * ShapedUnitPosition(c.shape, unit) + offset;
+      const Eigen::Vector3d normal =
+          normal_linear * ShapedUnitNormal(c.shape, unit, mesh.normals[v].cast<double>());
       for (int k = 0; k < 3; ++k) vertices[v].attributes[k] = static_cast<float>(normal[k]);
     }
     const auto id = static_cast<int32_t>(index);

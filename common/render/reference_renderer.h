@@ -5,12 +5,13 @@
 //
 // It draws what the GL renderer's cylinder pass draws, rule for rule:
 //   - Geometry: every part is the unit cylinder mesh of common/render/cylinder_mesh.h
-//     (options.segments sides, the GL renderer's count by default) placed by
-//     ViewerFromUnitCylinder(a, b, radius); clipped at near_z and far_z (the GL near and
-//     far planes by default); a pixel shows the closest kept fragment (depth test strictly
-//     closer, like GL_LESS); a discarded fragment writes nothing, so what lies behind it
-//     shows through. Parts whose axis is shorter than 1e-12 m draw nothing. The viewer
-//     camera's distortion is ignored, as on the GPU.
+//     (options.segments sides, the GL renderer's count by default), its vertices placed on
+//     the part's shape (ShapedUnitPosition of cylinder.shape) and then by
+//     ViewerFromUnitCylinder(cylinder) (axis, radius and width direction); clipped at near_z
+//     and far_z (the GL near and far planes by default); a pixel shows the closest kept
+//     fragment (depth test strictly closer, like GL_LESS); a discarded fragment writes
+//     nothing, so what lies behind it shows through. Parts whose axis is shorter than
+//     1e-12 m draw nothing. The viewer camera's distortion is ignored, as on the GPU.
 //   - Texture mapping (thesis Eq. 16, p_n = Q Omega p*): the viewer-frame surface point p*
 //     under the pixel centre is mapped by a candidate's stored_from_viewer (a 4x4, divided
 //     by its w), then projected with the crop camera's intrinsics (distortion ignored):
@@ -24,8 +25,9 @@
 //   - Candidates, visibility and the texturing modes: common/render/texturing.h. A fragment
 //     that no candidate colours is discarded.
 //   - Untextured parts (no crop) show their flat colour with the GL renderer's two-sided
-//     Lambert shading, colour * (0.35 + 0.65 |n . e|), n the interpolated vertex normal and
-//     e the unit direction from the surface point to the viewer.
+//     Lambert shading, colour * (0.35 + 0.65 |n . e|), n the interpolated vertex normal
+//     (cylinder_mesh.h's rule: ShapedUnitNormal through NormalFromUnitCylinder), normalised,
+//     and e the unit direction from the surface point to the viewer.
 //   - Colours in [0, 1] are written as round(255 c).
 // Exact in double apart from the rasteriser's 1/256-pixel vertex snapping, whereas the GPU
 // interpolates in float and filters with 8-bit weights: agreement is approximate along
@@ -77,7 +79,9 @@ struct ReferenceCandidate {
 
 // One body-part cylinder to draw.
 struct ReferencePart {
-  Cylinder cylinder;  // axis a -> b and radius, viewer frame, metres; finite, radius > 0
+  // Axis a -> b, radius, shape and width direction, viewer frame, metres; finite, radius > 0,
+  // shape values > 0.
+  Cylinder cylinder;
   // Ranked texture candidates, at most kMaxTextureCandidates; empty = untextured (flat
   // colour).
   std::vector<ReferenceCandidate> candidates;
@@ -124,11 +128,12 @@ struct ReferenceRender {
 
 // Renders the parts for the viewer camera. Preconditions (CHECK, with a message naming the
 // part): camera passes Check(); options pass Check(); every part has a finite axis, a finite
-// positive radius, at most kMaxTextureCandidates candidates, each with a crop, stored_frame
-// >= 0, a finite stored_from_viewer and a finite weight >= 0, and every crop 3-channel
-// non-empty colour, a 1-channel mask of the same size, a camera that passes Check() and has
-// the crop's size, and part labels and depth each empty or 1-channel of the crop's size. An
-// empty part list renders an all-clear image with an empty mask.
+// positive radius, finite shape values > 0, a finite width direction if any, at most
+// kMaxTextureCandidates candidates, each with a crop, stored_frame >= 0, a finite
+// stored_from_viewer and a finite weight >= 0, and every crop 3-channel non-empty colour, a
+// 1-channel mask of the same size, a camera that passes Check() and has the crop's size, and
+// part labels and depth each empty or 1-channel of the crop's size. An empty part list renders
+// an all-clear image with an empty mask.
 ReferenceRender RenderReference(const PinholeCamera& camera, std::span<const ReferencePart> parts,
                                 const ReferenceRenderOptions& options = {});
 

@@ -5,6 +5,8 @@
 #include <limits>
 
 #include "common/error/check.h"
+#include "common/render/cylinder_mesh.h"
+#include "common/render/rasterizer.h"
 
 namespace reenact {
 namespace {
@@ -50,22 +52,50 @@ double RayCylinderHit(const Eigen::Vector3d& d, const Cylinder& c) {
 struct ProjectedAxis {
   Eigen::Vector2d p0, p1;     // pixels
   double rho0 = 0, rho1 = 0;  // projected radius at each end, pixels
+  // Shaped parts: the clipped ends' axis parameters t (0 at a, 1 at b) and depths, and the
+  // largest semi-axis ratio max(width[k], depth[k]) of each ring.
+  bool shaped = false;
+  double t0 = 0, t1 = 1, z0 = 1, z1 = 1;
+  std::array<double, kShapeRings> ring_scale{};
 };
 
 std::optional<ProjectedAxis> ProjectAxis(const Cylinder& c, const PinholeCamera& camera) {
   Eigen::Vector3d a = c.a, b = c.b;
+  double t0 = 0, t1 = 1;
   if (a.z() < kLabelMapNearZ && b.z() < kLabelMapNearZ) return std::nullopt;
   if (a.z() < kLabelMapNearZ || b.z() < kLabelMapNearZ) {
     const double s = (kLabelMapNearZ - a.z()) / (b.z() - a.z());
     const Eigen::Vector3d cut = a + s * (b - a);
+    (a.z() < kLabelMapNearZ ? t0 : t1) = s;
     (a.z() < kLabelMapNearZ ? a : b) = cut;
   }
   const auto project = [&camera](const Eigen::Vector3d& p) {
     return Eigen::Vector2d(camera.fx * p.x() / p.z() + camera.cx,
                            camera.fy * p.y() / p.z() + camera.cy);
   };
-  return ProjectedAxis{project(a), project(b), camera.fx * c.radius / a.z(),
-                       camera.fx * c.radius / b.z()};
+  ProjectedAxis axis{project(a), project(b), camera.fx * c.radius / a.z(),
+                     camera.fx * c.radius / b.z()};
+  if (!c.shape.IsCylinder()) {
+    axis.shaped = true;
+    axis.t0 = t0;
+    axis.t1 = t1;
+    axis.z0 = a.z();
+    axis.z1 = b.z();
+    for (int k = 0; k < kShapeRings; ++k)
+      axis.ring_scale[k] = std::max(c.shape.width[k], c.shape.depth[k]);
+  }
+  return axis;
+}
+
+// The shaped axis's ring scale at image parameter s in [0, 1] of the projected axis: the 3D
+// point that projects there is at lambda = s z0 / ((1 - s) z1 + s z0) of the clipped axis.
+double RingScaleAt(const ProjectedAxis& axis, double s) {
+  const double lambda = s * axis.z0 / ((1 - s) * axis.z1 + s * axis.z0);
+  const double t = std::clamp(axis.t0 + lambda * (axis.t1 - axis.t0), 0.0, 1.0);
+  const double x = t * (kShapeRings - 1);
+  const int k = std::min(static_cast<int>(x), kShapeRings - 2);
+  const double f = x - k;
+  return (1 - f) * axis.ring_scale[k] + f * axis.ring_scale[k + 1];
 }
 
 // Pixel box (inclusive) that holds the cylinder's image: the projection of its axis-aligned
@@ -73,11 +103,21 @@ std::optional<ProjectedAxis> ProjectAxis(const Cylinder& c, const PinholeCamera&
 struct PixelBox {
   int x0 = 0, y0 = 0, x1 = -1, y1 = -1;
   bool Contains(int x, int y) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1; }
+  bool Empty() const { return x0 > x1 || y0 > y1; }
 };
 
+// Largest distance of the part's surface from its axis, metres.
+double Reach(const Cylinder& c) {
+  double scale = 0;
+  for (int k = 0; k < kShapeRings; ++k)
+    scale = std::max({scale, c.shape.width[k], c.shape.depth[k]});
+  return c.radius * scale;
+}
+
 PixelBox ImageBox(const Cylinder& c, const PinholeCamera& camera) {
-  const Eigen::Vector3d lo = c.a.cwiseMin(c.b).array() - c.radius;
-  const Eigen::Vector3d hi = c.a.cwiseMax(c.b).array() + c.radius;
+  const double reach = Reach(c);
+  const Eigen::Vector3d lo = c.a.cwiseMin(c.b).array() - reach;
+  const Eigen::Vector3d hi = c.a.cwiseMax(c.b).array() + reach;
   if (hi.z() <= 0) return {};  // wholly behind: never hit
   if (lo.z() < kLabelMapNearZ) return {0, 0, camera.width - 1, camera.height - 1};
   double u0 = kInf, v0 = kInf, u1 = -kInf, v1 = -kInf;
@@ -102,7 +142,65 @@ double CapsuleDistance(const ProjectedAxis& axis, const Eigen::Vector2d& pixel) 
   const Eigen::Vector2d e = axis.p1 - axis.p0;
   const double e2 = e.squaredNorm();
   const double s = e2 > 0 ? std::clamp((pixel - axis.p0).dot(e) / e2, 0.0, 1.0) : 0.0;
-  return (pixel - (axis.p0 + s * e)).norm() - ((1 - s) * axis.rho0 + s * axis.rho1);
+  const double rho = (1 - s) * axis.rho0 + s * axis.rho1;
+  return (pixel - (axis.p0 + s * e)).norm() - (axis.shaped ? rho * RingScaleAt(axis, s) : rho);
+}
+
+// The shaped (not IsCylinder) parts' tessellated meshes rasterised over the union of their
+// pixel boxes: the nearest part index per pixel (-1 where none) and its depth, ties to the
+// lower part index (drawn in part order, the depth test strictly closer).
+struct ShapedLayer {
+  PixelBox box;                          // within the image
+  std::optional<Rasterizer> rasterizer;  // over the box's crop of the camera
+  Image<int8_t> part;                    // the box's size
+
+  // Part index at image pixel (x, y), -1 where no shaped part lies; its depth where >= 0.
+  int Part(int x, int y) const { return box.Contains(x, y) ? part.at(x - box.x0, y - box.y0) : -1; }
+  double Depth(int x, int y) const { return rasterizer->depth().at(x - box.x0, y - box.y0); }
+};
+
+std::optional<ShapedLayer> RasterizeShapedParts(
+    const std::array<std::optional<Cylinder>, kBodyPartCount>& cylinders,
+    const PinholeCamera& camera) {
+  ShapedLayer layer;
+  layer.box = {camera.width, camera.height, -1, -1};
+  for (const auto& c : cylinders) {
+    if (!c || c->shape.IsCylinder() || !(c->Length() > 0)) continue;
+    const PixelBox b = ImageBox(*c, camera);
+    if (b.Empty()) continue;
+    layer.box = {std::min(layer.box.x0, b.x0), std::min(layer.box.y0, b.y0),
+                 std::max(layer.box.x1, b.x1), std::max(layer.box.y1, b.y1)};
+  }
+  layer.box = {std::max(layer.box.x0, 0), std::max(layer.box.y0, 0),
+               std::min(layer.box.x1, camera.width - 1), std::min(layer.box.y1, camera.height - 1)};
+  if (layer.box.Empty()) return std::nullopt;
+  const int w = layer.box.x1 - layer.box.x0 + 1, h = layer.box.y1 - layer.box.y0 + 1;
+  PinholeCamera window = camera.Cropped(layer.box.x0, layer.box.y0, w, h);
+  window.distortion = Distortion{};
+  RasterOptions options;
+  options.near_z = kLabelMapNearZ;
+  options.attribute_count = 0;
+  layer.rasterizer.emplace(window, options);
+  layer.part = Image<int8_t>(w, h, 1, -1);
+  const CylinderMesh mesh = MakeUnitCylinderMesh(kDefaultCylinderSegments);
+  std::vector<Eigen::Vector3i> triangles;
+  for (size_t t = 0; t < mesh.indices.size(); t += 3)
+    triangles.emplace_back(mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]);
+  std::vector<RasterVertex> vertices(mesh.positions.size());
+  for (int p = 0; p < kBodyPartCount; ++p) {
+    const auto& c = cylinders[p];
+    if (!c || c->shape.IsCylinder() || !(c->Length() > 0)) continue;
+    const Eigen::Matrix4d viewer_from_cylinder = ViewerFromUnitCylinder(*c);
+    for (size_t v = 0; v < vertices.size(); ++v)
+      vertices[v].position = viewer_from_cylinder.topLeftCorner<3, 3>() *
+                                 ShapedUnitPosition(c->shape, mesh.positions[v].cast<double>()) +
+                             viewer_from_cylinder.topRightCorner<3, 1>();
+    layer.rasterizer->DrawMesh(vertices, triangles, {}, [&](const RasterFragment& f) {
+      layer.part.at(f.x, f.y) = static_cast<int8_t>(p);
+      return true;
+    });
+  }
+  return layer;
 }
 
 }  // namespace
@@ -119,11 +217,18 @@ ImageLabel8 RenderPartLabelMap(const std::array<std::optional<Cylinder>, kBodyPa
     const Cylinder& c = *cylinders[p];
     REENACT_CHECK(c.a.allFinite() && c.b.allFinite() && std::isfinite(c.radius) && c.radius > 0,
                   "part label map: cylinders must be finite with a positive radius");
+    for (int k = 0; k < kShapeRings; ++k)
+      REENACT_CHECK(std::isfinite(c.shape.width[k]) && c.shape.width[k] > 0 &&
+                        std::isfinite(c.shape.depth[k]) && c.shape.depth[k] > 0,
+                    "part label map: shape rings must be finite and > 0");
+    REENACT_CHECK(!c.width_direction || c.width_direction->allFinite(),
+                  "part label map: width directions must be finite");
     if (c.Length() > 0) {
       axes[p] = ProjectAxis(c, camera);
-      boxes[p] = ImageBox(c, camera);
+      if (c.shape.IsCylinder()) boxes[p] = ImageBox(c, camera);
     }
   }
+  const std::optional<ShapedLayer> shaped = RasterizeShapedParts(cylinders, camera);
   ImageLabel8 labels(camera.width, camera.height, 1, kBackgroundLabel);
   for (int y = 0; y < camera.height; ++y)
     for (int x = 0; x < camera.width; ++x) {
@@ -135,6 +240,14 @@ ImageLabel8 RenderPartLabelMap(const std::array<std::optional<Cylinder>, kBodyPa
         if (!boxes[p].Contains(x, y)) continue;
         const double t = RayCylinderHit(d, *cylinders[p]);
         if (t < best_t) {
+          best_t = t;
+          best = p;
+        }
+      }
+      if (shaped) {
+        const int p = shaped->Part(x, y);
+        const double t = p >= 0 ? shaped->Depth(x, y) : kInf;
+        if (p >= 0 && (t < best_t || (t == best_t && p < best))) {
           best_t = t;
           best = p;
         }
@@ -157,9 +270,9 @@ ImageLabel8 RenderPartLabelMap(const std::array<std::optional<Cylinder>, kBodyPa
 
 ImageLabel8 PartLabelMapOfFrame(const Skeleton& skeleton_in_sensor, const RadiusRatios& ratios,
                                 const PinholeCamera& crop_camera, const ImageGray8& mask,
-                                const PartExtensions& extensions) {
-  return RenderPartLabelMap(PoseCylinders(skeleton_in_sensor, ratios, extensions), crop_camera,
-                            mask);
+                                const PartExtensions& extensions, const PartShapes& shapes) {
+  return RenderPartLabelMap(PoseCylinders(skeleton_in_sensor, ratios, extensions, shapes),
+                            crop_camera, mask);
 }
 
 }  // namespace reenact

@@ -21,10 +21,10 @@ Image<float> DepthInMetres(const ImageDepthMm& depth, double depth_scale_m) {
 VisibilityMaps MakeVisibilityMaps(const Skeleton& skeleton_in_sensor, const RadiusRatios& ratios,
                                   const PinholeCamera& crop_camera, const ImageGray8& mask,
                                   const ImageDepthMm& depth, double depth_scale_m,
-                                  const PartExtensions& extensions) {
+                                  const PartExtensions& extensions, const PartShapes& shapes) {
   REENACT_CHECK(depth.empty() || (depth.width == mask.width && depth.height == mask.height),
                 "depth must be empty or of the mask's size");
-  return {PartLabelMapOfFrame(skeleton_in_sensor, ratios, crop_camera, mask, extensions),
+  return {PartLabelMapOfFrame(skeleton_in_sensor, ratios, crop_camera, mask, extensions, shapes),
           DepthInMetres(depth, depth_scale_m)};
 }
 

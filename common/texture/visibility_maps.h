@@ -19,13 +19,15 @@ struct VisibilityMaps {
 Image<float> DepthInMetres(const ImageDepthMm& depth, double depth_scale_m);
 
 // Both maps of a stored frame: its skeleton in its sensor frame, the clip's radius ratios (and
-// part extensions: the shape the parts are drawn with, default the thesis's cylinders), the
-// crop's camera, mask and depth (registered to colour, depth units of depth_scale_m).
+// part extensions and shapes: the shape the parts are drawn with, defaults the thesis's
+// cylinders), the crop's camera, mask and depth (registered to colour, depth units of
+// depth_scale_m).
 // Preconditions (CHECK): those of PartLabelMapOfFrame and DepthInMetres; depth empty or of
 // the mask's size (empty depth: empty depth_m, the depth test then always passes).
 VisibilityMaps MakeVisibilityMaps(const Skeleton& skeleton_in_sensor, const RadiusRatios& ratios,
                                   const PinholeCamera& crop_camera, const ImageGray8& mask,
                                   const ImageDepthMm& depth, double depth_scale_m,
-                                  const PartExtensions& extensions = {});
+                                  const PartExtensions& extensions = {},
+                                  const PartShapes& shapes = {});
 
 }  // namespace reenact

@@ -12,7 +12,7 @@ std::vector<ReferencePart> ReferencePartsOf(
   parts.reserve(frame.cylinders.size());
   for (const CylinderDraw& c : frame.cylinders) {
     ReferencePart part;
-    part.cylinder = Cylinder{c.a, c.b, c.radius};
+    part.cylinder = Cylinder{c.a, c.b, c.radius, c.shape, c.width_direction};
     part.color = c.color;
     part.part = c.part;
     part.texturing = c.texturing;

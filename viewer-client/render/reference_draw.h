@@ -21,9 +21,9 @@ struct ReferenceTexture {
   int stored_frame = -1;
 };
 
-// One reference part per cylinder, in order: the same axis, radius, flat colour, body part,
-// texturing mode and ranked candidates (texture indices resolved by `texture`); no
-// candidates when frame.textured is false (bare cylinders).
+// One reference part per cylinder, in order: the same axis, radius, shape, width direction,
+// flat colour, body part, texturing mode and ranked candidates (texture indices resolved by
+// `texture`); no candidates when frame.textured is false (bare cylinders).
 std::vector<ReferencePart> ReferencePartsOf(
     const FrameDraw& frame, const std::function<ReferenceTexture(int texture)>& texture);
 

@@ -41,8 +41,9 @@ struct Renderer::Impl {
   // candidates.
   struct CylinderProgram {
     GlProgram program;
-    GLint projection = -1, model = -1, textured = -1, color = -1, stored = -1, intrinsics = -1,
-          size = -1;
+    GLint projection = -1, model = -1, normal = -1, ring_width = -1, ring_depth = -1,
+          ring_width_slope = -1, ring_depth_slope = -1, textured = -1, color = -1, stored = -1,
+          intrinsics = -1, size = -1;
     GLint mode = -1, weight = -1, label = -1, depth_tolerance = -1;  // visible variants only
   };
   std::array<CylinderProgram, 1 + kMaxTextureCandidates> cylinder_programs;
@@ -109,9 +110,8 @@ Status Renderer::Impl::Initialize(int w, int h) {
     const bool visibility = variant > 0;
     const int candidates = visibility ? variant : 1;
     CylinderProgram& c = cylinder_programs[static_cast<size_t>(variant)];
-    Expected<GlProgram> program =
-        MakeProgram("cylinder", shaders::kCylinderVertex,
-                    shaders::CylinderFragment(candidates, visibility));
+    Expected<GlProgram> program = MakeProgram("cylinder", shaders::CylinderVertex(kShapeRings),
+                                              shaders::CylinderFragment(candidates, visibility));
     if (!program) return program.error();
     c.program = std::move(program).value();
     const GlProgram& p = c.program;
@@ -124,6 +124,11 @@ Status Renderer::Impl::Initialize(int w, int h) {
     }
     c.projection = UniformLocation(p, "u_projection");
     c.model = UniformLocation(p, "u_viewer_from_cylinder");
+    c.normal = UniformLocation(p, "u_normal_from_cylinder");
+    c.ring_width = UniformLocation(p, "u_ring_width");
+    c.ring_depth = UniformLocation(p, "u_ring_depth");
+    c.ring_width_slope = UniformLocation(p, "u_ring_width_slope");
+    c.ring_depth_slope = UniformLocation(p, "u_ring_depth_slope");
     c.textured = UniformLocation(p, "u_textured");
     c.color = UniformLocation(p, "u_color");
     c.stored = UniformLocation(p, "u_stored_from_viewer");
@@ -294,8 +299,23 @@ void Renderer::Impl::DrawCylinders(const FrameDraw& frame,
       glUseProgram(program.program.id());
       current = &program;
     }
-    const std::array<float, 16> model = ToFloat(ViewerFromUnitCylinder(c.a, c.b, c.radius));
+    const Eigen::Matrix4d viewer_from_cylinder =
+        ViewerFromUnitCylinder(c.a, c.b, c.radius, c.width_direction);
+    const std::array<float, 16> model = ToFloat(viewer_from_cylinder);
     glUniformMatrix4fv(program.model, 1, GL_FALSE, model.data());
+    const Eigen::Matrix3f normal = NormalFromUnitCylinder(viewer_from_cylinder).cast<float>();
+    glUniformMatrix3fv(program.normal, 1, GL_FALSE, normal.data());
+    std::array<float, kShapeRings> width{}, depth{}, width_slope{}, depth_slope{};
+    for (int k = 0; k < kShapeRings; ++k) {
+      width[k] = static_cast<float>(c.shape.width[k]);
+      depth[k] = static_cast<float>(c.shape.depth[k]);
+      width_slope[k] = static_cast<float>(RingSlope(c.shape.width, k));
+      depth_slope[k] = static_cast<float>(RingSlope(c.shape.depth, k));
+    }
+    glUniform1fv(program.ring_width, kShapeRings, width.data());
+    glUniform1fv(program.ring_depth, kShapeRings, depth.data());
+    glUniform1fv(program.ring_width_slope, kShapeRings, width_slope.data());
+    glUniform1fv(program.ring_depth_slope, kShapeRings, depth_slope.data());
     glUniform3f(program.color, c.color.x(), c.color.y(), c.color.z());
     glUniform1i(program.textured, textured ? 1 : 0);
     if (textured) {
@@ -461,6 +481,12 @@ void Renderer::Draw(const FrameDraw& frame) {
     REENACT_CHECK(c.a.allFinite() && c.b.allFinite() && std::isfinite(c.radius) && c.radius > 0,
                   "cylinder end points must be finite and its radius positive");
     REENACT_CHECK(c.color.allFinite(), "cylinder colour must be finite");
+    for (int k = 0; k < kShapeRings; ++k)
+      REENACT_CHECK(std::isfinite(c.shape.width[k]) && c.shape.width[k] > 0 &&
+                        std::isfinite(c.shape.depth[k]) && c.shape.depth[k] > 0,
+                    "cylinder shape rings must be finite and > 0");
+    REENACT_CHECK(!c.width_direction || c.width_direction->allFinite(),
+                  "cylinder width direction must be finite");
     REENACT_CHECK(c.candidates.size() <= static_cast<size_t>(kMaxTextureCandidates),
                   "a cylinder has at most " + std::to_string(kMaxTextureCandidates) +
                       " texture candidates");

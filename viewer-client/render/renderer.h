@@ -7,7 +7,8 @@
 // frame, OpenCV convention (x right, y down, z forward, metres).
 //
 // Drawing order: clear; background image (AR) as a full-screen quad, no depth; floor (depth
-// tested and written); cylinders (depth tested, GL_LESS, the nearer fragment wins; discarded
+// tested and written); cylinders (the shaped unit mesh of common/render/cylinder_mesh.h,
+// placed by ViewerFromUnitCylinder; depth tested, GL_LESS, the nearer fragment wins; discarded
 // fragments write nothing); bones and joints on top, no depth. Only cylinder fragments set
 // the subject mask. The projection is GlProjectionFromPinhole(camera) (near 0.05 m, far
 // 50 m): a point that PinholeCamera::Project maps to (u, v) lights output pixel
@@ -25,6 +26,7 @@
 #include "common/error/expected.h"
 #include "common/geometry/pinhole_camera.h"
 #include "common/image/image.h"
+#include "common/model/cylinder_model.h"
 #include "common/render/texturing.h"
 #include "common/skeleton/skeleton.h"
 #include "viewer-client/render/egl_context.h"
@@ -58,6 +60,11 @@ struct CylinderDraw {
   Eigen::Vector3d a = Eigen::Vector3d::Zero();  // axis end points, viewer frame, metres
   Eigen::Vector3d b = Eigen::Vector3d::UnitZ();
   double radius = 0.05;  // metres, > 0
+  // Cross-sections along the axis (common/model/cylinder_model.h; default the plain
+  // cylinder), values finite and > 0, and the unit direction the width runs along
+  // (orthogonal to the axis; nullopt: the helper rule of common/render/cylinder_mesh.h).
+  PartShape shape{};
+  std::optional<Eigen::Vector3d> width_direction{};
   // Ranked texture candidates, at most kMaxTextureCandidates; empty = untextured.
   std::vector<TextureCandidate> candidates;
   BodyPart part = BodyPart::kHead;  // the body part modelled (visibility test (a))
@@ -126,9 +133,10 @@ class Renderer {
   RenderedFrame Render(const FrameDraw& frame);
   // Draws into the offscreen framebuffer (resized to the camera if needed). Preconditions
   // (CHECK): camera passes Check(); at most kMaxTextureCandidates candidates per cylinder,
-  // their texture indices uploaded, matrices finite and weights finite and >= 0; radii > 0
-  // and every point finite; depth_tolerance_m finite and >= 0; background, if set, is RGB
-  // with the camera's size. A cylinder whose end points coincide draws nothing.
+  // their texture indices uploaded, matrices finite and weights finite and >= 0; radii > 0,
+  // shape values finite and > 0, width directions and every point finite; depth_tolerance_m
+  // finite and >= 0; background, if set, is RGB with the camera's size. A cylinder whose end
+  // points coincide draws nothing.
   void Draw(const FrameDraw& frame);
   // The last Draw, rows flipped to top-down.
   RenderedFrame ReadBack() const;

@@ -4,22 +4,38 @@
 
 namespace reenact::viewer::shaders {
 
-const char* const kCylinderVertex = R"(#version 330 core
+namespace {
+
+// After "#version 330 core" and the define RINGS (kShapeRings).
+const char* const kCylinderVertexBody = R"(
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 uniform mat4 u_projection;
 uniform mat4 u_viewer_from_cylinder;
+uniform mat3 u_normal_from_cylinder;
+uniform float u_ring_width[RINGS];
+uniform float u_ring_depth[RINGS];
+uniform float u_ring_width_slope[RINGS];
+uniform float u_ring_depth_slope[RINGS];
 out vec3 v_position;
 out vec3 v_normal;
 void main() {
-  vec4 p = u_viewer_from_cylinder * vec4(a_position, 1.0);
+  int k = clamp(int(floor(a_position.z * float(RINGS - 1) + 0.5)), 0, RINGS - 1);
+  float w = u_ring_width[k];
+  float d = u_ring_depth[k];
+  vec3 n = a_normal;
+  if (a_normal.z == 0.0) {
+    float c = a_normal.x;
+    float s = a_normal.y;
+    n = vec3(d * c, w * s,
+             -(w * u_ring_depth_slope[k] * s * s + d * u_ring_width_slope[k] * c * c));
+  }
+  vec4 p = u_viewer_from_cylinder * vec4(a_position.x * w, a_position.y * d, a_position.z, 1.0);
   v_position = p.xyz;
-  v_normal = mat3(u_viewer_from_cylinder) * a_normal;
+  v_normal = u_normal_from_cylinder * n;
   gl_Position = u_projection * p;
 }
 )";
-
-namespace {
 
 // After "#version 330 core" and the defines CANDIDATES (1..3) and VISIBILITY (0 or 1).
 const char* const kCylinderFragmentBody = R"(
@@ -131,6 +147,10 @@ void main() {
 )";
 
 }  // namespace
+
+std::string CylinderVertex(int rings) {
+  return "#version 330 core\n#define RINGS " + std::to_string(rings) + "\n" + kCylinderVertexBody;
+}
 
 std::string CylinderFragment(int candidates, bool visibility) {
   return "#version 330 core\n#define CANDIDATES " + std::to_string(candidates) +

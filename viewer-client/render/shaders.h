@@ -7,24 +7,28 @@
 
 namespace reenact::viewer::shaders {
 
-// Cylinder: a_position/a_normal of the unit cylinder (cylinder_mesh.h), placed by
-// u_viewer_from_cylinder. The fragment program is built per variant by CylinderFragment:
-// `candidates` (1..3) texture candidates, `visibility` off for TexturingMode::kFirst (one
-// candidate, no visibility texture) and on for the visible modes (u_mode 1 kFirstVisible,
-// 2 kBlendVisible), so that the thesis path pays nothing for the others (llvmpipe runs
-// both sides of a branch). The rules are those of common/render/texturing.h; candidate i
-// is given by u_stored_from_viewer[i], u_intrinsics[i] = (fx, fy, cx, cy),
-// u_texture_size[i] = (w, h), u_weight[i], its premultiplied RGBA crop u_texture<i>
-// (bilinear) and its visibility texture u_visibility<i> (RG32F: part label, depth in
+// Cylinder: a_position/a_normal of the unit cylinder (common/render/cylinder_mesh.h) with `rings`
+// (kShapeRings) rings; the vertex program applies the part's shape and normal rule of
+// cylinder_mesh.h: ring k = round(z (rings - 1)), position (u_ring_width[k] x, u_ring_depth[k] y,
+// z) placed by u_viewer_from_cylinder; side normal (D c, W s, -(W D' s^2 + D W' c^2)) with W, D the
+// ring's width and depth, W', D' u_ring_width_slope[k], u_ring_depth_slope[k] (RingSlope), cap
+// normal as given; both into the viewer frame by u_normal_from_cylinder (NormalFromUnitCylinder).
+// The fragment program is built per variant by CylinderFragment: `candidates` (1..3) texture
+// candidates, `visibility` off for TexturingMode::kFirst (one candidate, no visibility texture) and
+// on for the visible modes (u_mode 1 kFirstVisible, 2 kBlendVisible), so that the thesis path pays
+// nothing for the others (llvmpipe runs both sides of a branch). The rules are those of
+// common/render/texturing.h; candidate i is given by u_stored_from_viewer[i], u_intrinsics[i] =
+// (fx, fy, cx, cy), u_texture_size[i] = (w, h), u_weight[i], its premultiplied RGBA crop
+// u_texture<i> (bilinear) and its visibility texture u_visibility<i> (RG32F: part label, depth in
 // metres; texelFetch at the nearest texel). Per fragment at viewer-frame point p:
 // p_s = u_stored_from_viewer[i] p; u = fx x/z + cx, v = fy y/z + cy; texture coordinate
 // ((u + 0.5)/w, (v + 0.5)/h); unusable if p_s.z <= 0, outside the crop, or the sampled mask
-// (alpha) < 0.5; else the colour is the sample divided by its alpha (so background texels
-// do not bleed into the subject); visible if usable, the label equals u_part_label and the
-// depth is 0 or within u_depth_tolerance of p_s.z. No candidate colours it: discard.
-// Flat mode (u_textured == 0): Lambert shading of u_color under a headlight.
-// Writes alpha 1: the renderer's subject mask.
-extern const char* const kCylinderVertex;
+// (alpha) < 0.5; else the colour is the sample divided by its alpha (so background texels do not
+// bleed into the subject); visible if usable, the label equals u_part_label and the depth is 0 or
+// within u_depth_tolerance of p_s.z. No candidate colours it: discard. Flat mode
+// (u_textured == 0): Lambert shading of u_color under a headlight. Writes alpha 1: the renderer's
+// subject mask.
+std::string CylinderVertex(int rings);
 std::string CylinderFragment(int candidates, bool visibility);
 
 // Floor: a quad with a_position (viewer frame) and a_plane (metres along two in-plane axes

@@ -3,12 +3,15 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <tuple>
+#include <utility>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "common/error/check.h"
+#include "common/render/cylinder_mesh.h"
 
 namespace reenact::viewer {
 namespace {
@@ -18,9 +21,9 @@ Eigen::Vector3d D(const Eigen::Vector3f& v) { return v.cast<double>(); }
 TEST(CylinderMesh, SizesFollowTheSegmentCount) {
   for (int n : {3, 8, 32}) {
     const CylinderMesh mesh = MakeUnitCylinderMesh(n);
-    EXPECT_EQ(mesh.positions.size(), static_cast<size_t>(4 * n + 2));
+    EXPECT_EQ(mesh.positions.size(), static_cast<size_t>((kShapeRings + 2) * n + 2));
     EXPECT_EQ(mesh.normals.size(), mesh.positions.size());
-    EXPECT_EQ(mesh.indices.size(), static_cast<size_t>(3 * 4 * n));
+    EXPECT_EQ(mesh.indices.size(), static_cast<size_t>(3 * 2 * kShapeRings * n));
     for (uint32_t i : mesh.indices) EXPECT_LT(i, mesh.positions.size());
   }
 }
@@ -30,7 +33,8 @@ TEST(CylinderMesh, VerticesLieOnTheUnitCylinder) {
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
     const Eigen::Vector3f& p = mesh.positions[i];
     const Eigen::Vector3f& n = mesh.normals[i];
-    EXPECT_TRUE(p.z() == 0.0f || p.z() == 1.0f);
+    EXPECT_EQ(p.z() * (kShapeRings - 1), std::round(p.z() * (kShapeRings - 1)));  // on a ring
+    EXPECT_TRUE(p.z() >= 0.0f && p.z() <= 1.0f);
     EXPECT_NEAR(n.norm(), 1.0, 1e-6);
     const double r = std::hypot(p.x(), p.y());
     if (n.z() == 0.0f) {  // side: on the mantle, normal radial
@@ -38,6 +42,7 @@ TEST(CylinderMesh, VerticesLieOnTheUnitCylinder) {
       EXPECT_NEAR(n.x(), p.x(), 1e-6);
       EXPECT_NEAR(n.y(), p.y(), 1e-6);
     } else {  // cap: normal along the axis, pointing away from the body
+      EXPECT_TRUE(p.z() == 0.0f || p.z() == 1.0f);
       EXPECT_TRUE(r < 1e-6 || std::abs(r - 1.0) < 1e-6);
       EXPECT_EQ(n.z(), p.z() == 0.0f ? -1.0f : 1.0f);
     }
@@ -91,6 +96,188 @@ TEST(CylinderMesh, EveryEdgeIsSharedByTwoOppositeTriangles) {
     ASSERT_NE(reverse, directed.end());
     EXPECT_EQ(reverse->second, 1);
   }
+}
+
+// The documented order: side vertex k n + i is at angle 2 pi i / n on ring k; band k, quad i
+// is triangles 2 (k n + i) and 2 (k n + i) + 1, spanning rings k, k + 1 and angles i, i + 1;
+// then n triangles of the z = 0 cap and n of the z = 1 cap.
+TEST(CylinderMesh, VerticesAndTrianglesFollowTheDocumentedOrder) {
+  const int n = 7;
+  const CylinderMesh mesh = MakeUnitCylinderMesh(n);
+  for (int k = 0; k < kShapeRings; ++k)
+    for (int i = 0; i < n; ++i) {
+      const double angle = 2 * std::numbers::pi * i / n;
+      const Eigen::Vector3d expected(std::cos(angle), std::sin(angle),
+                                     static_cast<double>(k) / (kShapeRings - 1));
+      EXPECT_NEAR((D(mesh.positions[k * n + i]) - expected).norm(), 0, 1e-6) << k << " " << i;
+    }
+  for (int k = 0; k + 1 < kShapeRings; ++k)
+    for (int i = 0; i < n; ++i) {
+      for (int half = 0; half < 2; ++half) {
+        const size_t t = 2 * static_cast<size_t>(k * n + i) + half;
+        for (int v = 0; v < 3; ++v) {
+          const uint32_t index = mesh.indices[3 * t + v];
+          ASSERT_LT(index, static_cast<uint32_t>(kShapeRings * n));
+          const int ring = static_cast<int>(index) / n, at = static_cast<int>(index) % n;
+          EXPECT_TRUE(ring == k || ring == k + 1);
+          EXPECT_TRUE(at == i || at == (i + 1) % n);
+        }
+      }
+    }
+  for (int cap = 0; cap < 2; ++cap)
+    for (int i = 0; i < n; ++i) {
+      const size_t t = 2 * static_cast<size_t>((kShapeRings - 1) * n) + cap * n + i;
+      for (int v = 0; v < 3; ++v)
+        EXPECT_EQ(mesh.positions[mesh.indices[3 * t + v]].z(), static_cast<float>(cap));
+    }
+}
+
+TEST(CylinderMesh, RingOfAVertexAndRingSlopes) {
+  for (int k = 0; k < kShapeRings; ++k)
+    EXPECT_EQ(RingOfUnitVertex(static_cast<float>(k) / (kShapeRings - 1)), k);
+  EXPECT_EQ(RingOfUnitVertex(-0.3), 0);
+  EXPECT_EQ(RingOfUnitVertex(1.7), kShapeRings - 1);
+  // A linear profile has its slope everywhere; a zigzag 0 1 0 1 0 has one-sided slopes at the
+  // ends (+-1 over a quarter) and zero central differences inside.
+  const std::array<double, kShapeRings> linear = {1.0, 1.25, 1.5, 1.75, 2.0};
+  const std::array<double, kShapeRings> zigzag = {0, 1, 0, 1, 0};
+  for (int k = 0; k < kShapeRings; ++k) EXPECT_NEAR(RingSlope(linear, k), 1.0, 1e-12);
+  EXPECT_NEAR(RingSlope(zigzag, 0), 4.0, 1e-12);
+  EXPECT_NEAR(RingSlope(zigzag, 2), 0.0, 1e-12);
+  EXPECT_NEAR(RingSlope(zigzag, 4), -4.0, 1e-12);
+  EXPECT_THROW(RingSlope(zigzag, kShapeRings), CheckError);
+}
+
+// Each vertex lands at (width[k] x, depth[k] y, z) of its ring k.
+TEST(CylinderMesh, ShapedPositionsScaleEachRingByItsWidthAndDepth) {
+  PartShape shape;
+  shape.width = {1.0, 1.5, 2.0, 2.5, 3.0};
+  shape.depth = {0.5, 0.6, 0.7, 0.8, 0.9};
+  const CylinderMesh mesh = MakeUnitCylinderMesh(9);
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    const Eigen::Vector3d p = D(mesh.positions[v]);
+    const int k = static_cast<int>(std::lround(p.z() * (kShapeRings - 1)));
+    const Eigen::Vector3d q = ShapedUnitPosition(shape, p);
+    EXPECT_NEAR(q.x(), shape.width[k] * p.x(), 1e-12);
+    EXPECT_NEAR(q.y(), shape.depth[k] * p.y(), 1e-12);
+    EXPECT_EQ(q.z(), p.z());
+    EXPECT_EQ(ShapedUnitPosition(PartShape{}, p), p);  // the plain cylinder is unchanged
+  }
+}
+
+// Similar polygons 1 -> 2 times the regular n-gon: a frustum of a pyramid, volume
+// h / 3 (A0 + A1 + sqrt(A0 A1)) = 7/3 A; an elliptic prism (rings all 1.5 x 0.4): 0.6 A.
+TEST(CylinderMesh, ShapedMeshEnclosesTheFrustumAndEllipticPrismVolumes) {
+  const int n = 24;
+  const double area = n / 2.0 * std::sin(2 * std::numbers::pi / n);
+  PartShape cone, elliptic;
+  cone.width = cone.depth = {1.0, 1.25, 1.5, 1.75, 2.0};
+  elliptic.width.fill(1.5);
+  elliptic.depth.fill(0.4);
+  const CylinderMesh mesh = MakeUnitCylinderMesh(n);
+  for (const auto& [shape, expected] :
+       {std::pair{cone, 7.0 / 3.0 * area}, std::pair{elliptic, 0.6 * area}}) {
+    double volume = 0;
+    for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+      const Eigen::Vector3d a = ShapedUnitPosition(shape, D(mesh.positions[mesh.indices[t]]));
+      const Eigen::Vector3d b = ShapedUnitPosition(shape, D(mesh.positions[mesh.indices[t + 1]]));
+      const Eigen::Vector3d c = ShapedUnitPosition(shape, D(mesh.positions[mesh.indices[t + 2]]));
+      volume += a.dot(b.cross(c)) / 6.0;
+    }
+    EXPECT_NEAR(volume, expected, 1e-5);
+  }
+}
+
+// For linear ring profiles W(z) = W0 + a z, D(z) = D0 + b z the rule's side normal is the exact
+// normal of the smooth surface (W(z) cos t, D(z) sin t, z): orthogonal to both tangents
+// (-W sin t, D cos t, 0) and (a cos t, b sin t, 1), and pointing outwards.
+TEST(CylinderMesh, ShapedSideNormalsAreExactForLinearProfiles) {
+  PartShape shape;
+  shape.width = {1.0, 1.1, 1.2, 1.3, 1.4};  // a = 0.4
+  shape.depth = {0.9, 0.8, 0.7, 0.6, 0.5};  // b = -0.4
+  const CylinderMesh mesh = MakeUnitCylinderMesh(16);
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    const Eigen::Vector3d p = D(mesh.positions[v]), m = D(mesh.normals[v]);
+    const Eigen::Vector3d n = ShapedUnitNormal(shape, p, m);
+    if (m.z() != 0) {
+      EXPECT_EQ(n, m);  // caps keep their normal
+      continue;
+    }
+    const double c = m.x(), s = m.y(), z = p.z();
+    const double w = 1.0 + 0.4 * z, d = 0.9 - 0.4 * z;
+    EXPECT_NEAR(n.dot(Eigen::Vector3d(-w * s, d * c, 0)), 0, 1e-6);
+    EXPECT_NEAR(n.dot(Eigen::Vector3d(0.4 * c, -0.4 * s, 1)), 0, 1e-6);
+    EXPECT_GT(n.dot(Eigen::Vector3d(c, s, 0)), 0);
+  }
+  // The plain cylinder keeps the radial normal.
+  for (size_t v = 0; v < mesh.positions.size(); ++v)
+    EXPECT_NEAR((ShapedUnitNormal(PartShape{}, D(mesh.positions[v]), D(mesh.normals[v])) -
+                 D(mesh.normals[v]))
+                    .norm(),
+                0, 1e-12);
+}
+
+// Placed as a body part (radius 0.1 m, length 0.5 m, elliptic and tapered), every triangle
+// faces its vertices' normals (NormalFromUnitCylinder of ShapedUnitNormal).
+TEST(CylinderMesh, ShapedTrianglesFaceTheirVertexNormals) {
+  PartShape shape;
+  shape.width = {1.4, 1.5, 1.6, 1.4, 1.2};
+  shape.depth = {0.8, 0.9, 1.0, 0.9, 0.7};
+  const CylinderMesh mesh = MakeUnitCylinderMesh(kDefaultCylinderSegments);
+  const Eigen::Matrix4d m =
+      ViewerFromUnitCylinder(Eigen::Vector3d(0.1, 0.2, 2.0), Eigen::Vector3d(0.3, 0.6, 2.2), 0.1,
+                             Eigen::Vector3d(1, 0, 0));
+  const Eigen::Matrix3d normal_from_cylinder = NormalFromUnitCylinder(m);
+  for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+    Eigen::Vector3d p[3], n[3];
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t i = mesh.indices[t + k];
+      p[k] = m.topLeftCorner<3, 3>() * ShapedUnitPosition(shape, D(mesh.positions[i]));
+      n[k] =
+          (normal_from_cylinder * ShapedUnitNormal(shape, D(mesh.positions[i]), D(mesh.normals[i])))
+              .normalized();
+    }
+    const Eigen::Vector3d face = (p[1] - p[0]).cross(p[2] - p[0]).normalized();
+    for (int k = 0; k < 3; ++k) EXPECT_GT(face.dot(n[k]), 0.95);
+  }
+}
+
+// x_hat follows the width direction made orthogonal to the axis; y_hat = z_hat x x_hat; without
+// a usable direction (none, zero, along the axis) the helper rule.
+TEST(ViewerFromUnitCylinder, WidthDirectionSetsTheFrameElseTheHelperRule) {
+  const Eigen::Vector3d a(0.1, -0.2, 2.0), b(0.1, 0.4, 2.1);
+  const double r = 0.15;
+  const Eigen::Vector3d z = (b - a).normalized();
+  const Eigen::Vector3d w(1.0, 0.3, 0.2);  // not orthogonal to the axis
+  const Eigen::Matrix4d m = ViewerFromUnitCylinder(a, b, r, w);
+  const Eigen::Vector3d expected_x = (w - w.dot(z) * z).normalized();
+  EXPECT_NEAR((m.block<3, 1>(0, 0) - r * expected_x).norm(), 0, 1e-12);
+  EXPECT_NEAR((m.block<3, 1>(0, 1) - r * z.cross(expected_x)).norm(), 0, 1e-12);
+  EXPECT_NEAR((m.block<3, 1>(0, 2) - (b - a)).norm(), 0, 1e-12);
+  EXPECT_NEAR((m.block<3, 1>(0, 3) - a).norm(), 0, 1e-12);
+  const Eigen::Matrix3d linear = m.topLeftCorner<3, 3>();
+  EXPECT_GT(linear.determinant(), 0);
+
+  const Eigen::Matrix4d helper = ViewerFromUnitCylinder(a, b, r);
+  const Eigen::Vector3d helper_x = z.cross(Eigen::Vector3d::UnitX()).normalized();  // |z.x| < 0.9
+  EXPECT_NEAR((helper.block<3, 1>(0, 0) - r * helper_x).norm(), 0, 1e-12);
+  EXPECT_EQ(ViewerFromUnitCylinder(a, b, r, Eigen::Vector3d::Zero()), helper);
+  EXPECT_EQ(ViewerFromUnitCylinder(a, b, r, Eigen::Vector3d(3 * (b - a))), helper);
+  EXPECT_EQ(ViewerFromUnitCylinder(a, b, r, std::nullopt), helper);
+  EXPECT_TRUE(ViewerFromUnitCylinder(a, b, r, Eigen::Vector3d(1e-300, 0, 0)).allFinite());
+
+  Cylinder cylinder{a, b, r};
+  cylinder.width_direction = w;
+  EXPECT_EQ(ViewerFromUnitCylinder(cylinder), m);
+}
+
+TEST(ViewerFromUnitCylinder, NormalMatrixIsTheInverseTranspose) {
+  const Eigen::Matrix4d m =
+      ViewerFromUnitCylinder(Eigen::Vector3d(0.3, 0.1, 1.5), Eigen::Vector3d(-0.2, 0.5, 1.9), 0.07,
+                             Eigen::Vector3d(0, 0, 1));
+  const Eigen::Matrix3d n = NormalFromUnitCylinder(m);
+  EXPECT_NEAR((m.topLeftCorner<3, 3>().transpose() * n - Eigen::Matrix3d::Identity()).norm(), 0,
+              1e-12);
 }
 
 TEST(CylinderMesh, RejectsFewerThanThreeSegments) {

@@ -359,6 +359,90 @@ TEST(GlRenderer, RejectsANonPositiveRadius) {
   EXPECT_THROW(renderer.Render(frame), CheckError);
 }
 
+// A shaped cylinder seen end-on (common/model/cylinder_model.h's PartShape): its near cap is
+// the ellipse with semi-axes fx W r / z along the width direction and fx D r / z across it.
+TEST(GlRenderer, EllipticCylinderEndOnShowsItsEllipticCap) {
+  Renderer renderer = MakeRenderer();
+  const double r = 0.15, w = 1.4, d = 0.6;
+  for (bool width_along_x : {true, false}) {
+    FrameDraw frame = BlackFrame();
+    CylinderDraw c = HeadOn(Eigen::Vector3d(0.02, -0.01, 1.0), 0.5, r, {0, 1, 0});
+    c.shape.width.fill(w);
+    c.shape.depth.fill(d);
+    c.width_direction = width_along_x ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+    frame.cylinders.push_back(c);
+    const RenderedFrame out = renderer.Render(frame);
+    const double cu = 200 * 0.02 + 80.3, cv = 200 * -0.01 + 60.7;
+    const double half_u = 200 * (width_along_x ? w : d) * r;
+    const double half_v = 200 * (width_along_x ? d : w) * r;
+    int left = -1, right = -1, top = -1, bottom = -1;
+    for (int x = 0; x < 160; ++x) {
+      if (!out.subject_mask.at(x, 59)) continue;
+      if (left < 0) left = x;
+      right = x;
+    }
+    for (int y = 0; y < 120; ++y) {
+      if (!out.subject_mask.at(84, y)) continue;
+      if (top < 0) top = y;
+      bottom = y;
+    }
+    EXPECT_NEAR(left, cu - half_u, 1.0);
+    EXPECT_NEAR(right, cu + half_u, 1.0);
+    EXPECT_NEAR(top, cv - half_v, 1.0);
+    EXPECT_NEAR(bottom, cv + half_v, 1.0);
+  }
+}
+
+// Flat shading uses the shaped surface's normal (common/render/cylinder_mesh.h's rule): on a
+// steep cone across the view (radius 0.05 -> 0.25 m over 0.4 m, slope 0.5, axis along x at
+// depth 2) the Lambert term at a pixel is 0.35 + 0.65 |n . e| with n the cone's exact normal
+// where the pixel's ray meets it, leaning back along the axis by atan(0.5).
+TEST(GlRenderer, FlatShadingFollowsTheConesTiltedNormal) {
+  Renderer renderer = MakeRenderer();
+  const PinholeCamera cam = ViewerCamera();
+  const double r = 0.05, d = 2.0, x0 = -0.2, x1 = 0.2;
+  FrameDraw frame = BlackFrame();
+  CylinderDraw c;
+  c.a = Eigen::Vector3d(x0, 0, d);
+  c.b = Eigen::Vector3d(x1, 0, d);
+  c.radius = r;
+  c.color = Eigen::Vector3f(1, 1, 1);
+  for (int k = 0; k < kShapeRings; ++k) c.shape.width[k] = c.shape.depth[k] = 1.0 + k;
+  frame.cylinders.push_back(c);
+  const RenderedFrame out = renderer.Render(frame);
+  // Radius R(x) = s (x - apex); the ray t (dx, dy, 1) meets the cone where
+  // (t dy)^2 + (t - d)^2 = s^2 (t dx - apex)^2 (nearest root).
+  const double s = r * 4 / (x1 - x0), apex = x0 - r / s;
+  for (int v = 57; v <= 64; ++v)
+    for (int u = 70; u <= 95; ++u) {
+      const Eigen::Vector3d ray((u - cam.cx) / cam.fx, (v - cam.cy) / cam.fy, 1.0);
+      const double qa = ray.y() * ray.y() + 1 - s * s * ray.x() * ray.x();
+      const double qb = -2 * d + 2 * s * s * apex * ray.x();
+      const double qc = d * d - s * s * apex * apex;
+      const double t = (-qb - std::sqrt(qb * qb - 4 * qa * qc)) / (2 * qa);
+      const Eigen::Vector3d p = t * ray;
+      const Eigen::Vector3d radial = Eigen::Vector3d(0, p.y(), p.z() - d).normalized();
+      const Eigen::Vector3d n = (radial - s * Eigen::Vector3d::UnitX()).normalized();
+      const double expected = 255 * (0.35 + 0.65 * std::abs(n.dot(-p.normalized())));
+      ASSERT_EQ(out.subject_mask.at(u, v), 255) << u << ", " << v;
+      EXPECT_NEAR(out.color.at(u, v, 1), expected, 3.0) << u << ", " << v;
+    }
+}
+
+TEST(GlRenderer, RejectsANonPositiveOrNonFiniteShapeAndWidthDirection) {
+  Renderer renderer = MakeRenderer();
+  for (double bad : {0.0, -1.0, std::nan("")}) {
+    FrameDraw frame = BlackFrame();
+    frame.cylinders.push_back(HeadOn(Eigen::Vector3d(0, 0, 1.0), 0.3, 0.1, {0, 1, 0}));
+    frame.cylinders.back().shape.depth[2] = bad;
+    EXPECT_THROW(renderer.Render(frame), CheckError) << bad;
+  }
+  FrameDraw frame = BlackFrame();
+  frame.cylinders.push_back(HeadOn(Eigen::Vector3d(0, 0, 1.0), 0.3, 0.1, {0, 1, 0}));
+  frame.cylinders.back().width_direction = Eigen::Vector3d(std::nan(""), 0, 0);
+  EXPECT_THROW(renderer.Render(frame), CheckError);
+}
+
 }  // namespace
 }  // namespace reenact::viewer
 
