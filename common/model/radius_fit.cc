@@ -2,25 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <vector>
 
 #include "common/error/check.h"
 #include "common/estimate/median.h"
+#include "common/model/part_pixel_assignment.h"
 
 namespace reenact {
-namespace {
-
-struct ProjectedAxis {
-  Eigen::Vector2d a, b;  // pixels
-  Eigen::Vector2d dir;   // unit, a -> b
-  Eigen::Vector2d normal;
-  double length_px = 0;
-  double length_m = 0;
-};
-
-}  // namespace
 
 void RadiusFitOptions::Check() const {
   REENACT_CHECK(slices >= 1, "slices must be >= 1");
@@ -44,20 +33,15 @@ RadiusFitResult FitRadiusRatios(const Skeleton& skeleton, const PinholeCamera& c
   RadiusFitResult result;
   result.radius_ratio = DefaultRadiusRatios();
 
-  std::array<std::optional<ProjectedAxis>, kBodyPartCount> axes;
+  ProjectedPartAxes axes;
+  std::array<double, kBodyPartCount> length_m{};
   for (int p = 0; p < kBodyPartCount; ++p) {
     const auto part = static_cast<BodyPart>(p);
     if (!skeleton.HasPart(part)) continue;
     const auto [ja, jb] = PartJoints(part);
-    const auto pa = camera.Project(skeleton[ja]);
-    const auto pb = camera.Project(skeleton[jb]);
-    if (!pa || !pb) continue;
-    ProjectedAxis axis{*pa, *pb, *pb - *pa, {}, (*pb - *pa).norm(),
-                       (skeleton[jb] - skeleton[ja]).norm()};
-    if (axis.length_px < 2.0 || axis.length_m < kMinBoneLength) continue;
-    axis.dir /= axis.length_px;
-    axis.normal = Eigen::Vector2d(-axis.dir.y(), axis.dir.x());
-    axes[p] = axis;
+    length_m[p] = (skeleton[jb] - skeleton[ja]).norm();
+    if (length_m[p] < kMinBoneLength) continue;
+    axes[p] = ProjectPartAxis(skeleton[ja], skeleton[jb], camera, 2.0);
   }
 
   // Pixel counts per part and slice; depths per part.
@@ -68,22 +52,10 @@ RadiusFitResult FitRadiusRatios(const Skeleton& skeleton, const PinholeCamera& c
   for (int y = 0; y < mask.height; ++y) {
     for (int x = 0; x < mask.width; ++x) {
       if (mask.at(x, y) < 128) continue;
-      const Eigen::Vector2d px(x, y);
-      int best = -1;
-      double best_dist = std::numeric_limits<double>::max(), best_t = 0;
-      for (int p = 0; p < kBodyPartCount; ++p) {
-        if (!axes[p]) continue;
-        const ProjectedAxis& ax = *axes[p];
-        const double t = (px - ax.a).dot(ax.dir) / ax.length_px;
-        if (t < 0 || t > 1) continue;
-        const double off = (px - ax.a).dot(ax.normal);
-        if (std::abs(off) < best_dist) {
-          best = p;
-          best_dist = std::abs(off);
-          best_t = t;
-        }
-      }
-      if (best < 0) continue;
+      const auto assigned = AssignPixelToPart(Eigen::Vector2d(x, y), axes);
+      if (!assigned) continue;
+      const int best = assigned->part;
+      const double best_t = assigned->t;
       ++result.pixel_count[best];
       if (depth.at(x, y) != 0) part_depths[best].push_back(depth.at(x, y) * options.depth_scale_m);
       if (best_t < 0.1 || best_t > 0.9) continue;
@@ -94,7 +66,7 @@ RadiusFitResult FitRadiusRatios(const Skeleton& skeleton, const PinholeCamera& c
 
   for (int p = 0; p < kBodyPartCount; ++p) {
     if (!axes[p]) continue;
-    const ProjectedAxis& ax = *axes[p];
+    const ProjectedPartAxis& ax = *axes[p];
     const double slice_length_px = 0.8 * ax.length_px / slices;
     std::vector<double> widths;
     for (int s = 0; s < slices; ++s)
@@ -108,7 +80,7 @@ RadiusFitResult FitRadiusRatios(const Skeleton& skeleton, const PinholeCamera& c
     const double w = UpperMedian(widths);
     if (!(2 * f - w > 0)) continue;
     const double radius = w * UpperMedian(part_depths[p]) / (2 * f - w);
-    result.radius_ratio[p] = radius / ax.length_m;
+    result.radius_ratio[p] = radius / length_m[p];
     result.fitted[p] = true;
   }
   return result;
