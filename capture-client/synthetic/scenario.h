@@ -37,10 +37,11 @@
 //   3 mm and 0.3 degrees per axis drawn from the seed.
 //
 // "bvh:PATH" (30 fps): real motion capture from a BVH file (bvh_motion.h: resampled, placed
-//   at the origin facing world -y, feet on the floor) as target_skeletons, for a skinned
-//   body. Static sensor (sensor_placement.h): 3 m in front of the start at 1.3 m when the
-//   whole motion stays in view from there; otherwise the front-most direction around the
-//   motion's centre, as close as the room allows, from which every frame stays in view.
+//   at the origin facing world -y, feet on the floor) as target_skeletons, played on either
+//   body by bone directions. Static sensor (sensor_placement.h): 3 m in front of the start at
+//   1.3 m when the whole motion stays in view from there; otherwise the front-most direction
+//   around the motion's centre, as close as the room allows, from which every frame stays in
+//   view (placed for the motion's own skeletons, not the body's).
 
 #include <cstdint>
 #include <string>
@@ -61,8 +62,8 @@ struct Scenario {
   // The motion, exactly one of:
   std::vector<BodyPose> poses;             // procedural motion (any body), one per frame
   std::vector<Skeleton> target_skeletons;  // motion given as joint positions (bvh:), world
-                                           // frame z-up metres, one per frame; played on a
-                                           // skinned body by bone directions
+                                           // frame z-up metres, one per frame; played on
+                                           // either body by bone directions
   bool model_animation = false;            // the skinned model's own animation
   int model_animation_frames = 0;          //   (frames to play when model_animation)
   // The sensor pose per frame (a static sensor: all equal). Same length as the motion.

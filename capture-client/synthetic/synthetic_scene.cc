@@ -6,6 +6,7 @@
 
 #include "capture-client/synthetic/body_mesh.h"
 #include "capture-client/synthetic/body_model.h"
+#include "capture-client/synthetic/body_pose_from_skeleton.h"
 #include "capture-client/synthetic/body_texture.h"
 #include "capture-client/synthetic/depth_noise.h"
 #include "capture-client/synthetic/procedural.h"
@@ -107,12 +108,12 @@ Expected<SyntheticScene> SyntheticScene::Create(std::string_view scenario, uint6
                                                 const SyntheticBodySpec& body) {
   Expected<Scenario> made = MakeScenario(scenario, seed);
   if (!made.ok()) return made.error();
-  if (made->poses.empty() && !body.skinned())
+  if (made->poses.empty() && made->target_skeletons.empty() && !body.skinned())
     return MakeError("unsupported", "scenario '" + made->name +
-                                        "' needs a skinned body (its motion is not given as "
-                                        "procedural poses); the procedural body plays only "
-                                        "procedural scenarios such as turn-and-kick. Give a "
-                                        "glTF skinned mesh, e.g. "
+                                        "' needs a skinned body (it plays the model's own "
+                                        "animation); the procedural body plays procedural "
+                                        "scenarios such as turn-and-kick and bvh: motion. Give "
+                                        "a glTF skinned mesh, e.g. "
                                         "../shared/data/models/CesiumMan.glb");
   REENACT_CHECK(static_cast<int>(made->world_from_sensor.size()) == made->frame_count(),
                 "scenario '" + made->name + "' needs one world_from_sensor per frame");
@@ -126,6 +127,8 @@ Expected<SyntheticScene> SyntheticScene::Create(std::string_view scenario, uint6
   if (!body.skinned()) {
     data->body = BuildBodyMeshes();
     for (const BodyPose& pose : sc.poses) data->posed.push_back(PoseBody(pose));
+    for (const Skeleton& target : sc.target_skeletons)
+      data->posed.push_back(PoseBody(BodyPoseFromSkeleton(target).pose));
     return SyntheticScene(std::move(data));
   }
   if (!(std::isfinite(body.height_m) && body.height_m >= 0 && body.height_m < 10))

@@ -57,7 +57,8 @@ struct SyntheticRenderOptions {
 
 // Which subject a scene shows.
 //  - procedural (gltf_path empty, the default): the procedural body; it plays scenarios
-//    given as poses (turn-and-kick, walk-handheld, calibration).
+//    given as poses (turn-and-kick, walk-handheld, calibration) and bvh: motion, retargeted
+//    by bone directions onto its own dimensions (body_pose_from_skeleton.h); not model-walk.
 //  - skinned (gltf_path set): the glTF skinned mesh at that path (.glb or .gltf), scaled to
 //    height_m (0 keeps the model's own; CesiumMan 1.51 m). It plays every scenario: poses
 //    are retargeted onto it from the procedural body's skeleton (PoseBody), bvh: motion from
@@ -74,8 +75,8 @@ class SyntheticScene {
  public:
   // A scene playing the named scenario (see ScenarioNames()) on the given body; seed drives
   // the depth noise (and walk-handheld's hand shake). Errors: "not_found" listing the known
-  // scenarios for an unknown name; "unsupported" for a scenario that needs a skinned body
-  // (bvh:, model-walk) on the procedural one, or model-walk on a model without animation;
+  // scenarios for an unknown name; "unsupported" for model-walk (the model's own
+  // animation) on the procedural body or on a model without animation;
   // the errors of SkinnedBody::Load for a body file that cannot be used.
   static Expected<SyntheticScene> Create(std::string_view scenario, uint64_t seed = 1,
                                          const SyntheticBodySpec& body = {});

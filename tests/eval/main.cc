@@ -38,14 +38,16 @@ constexpr const char* kUsage =
     "      the scenario's); share within 2 cm / 1 degree, median errors, ms per frame, per\n"
     "      15-degree band, tracking frame to frame and relocalising every frame\n"
     "  reenact-eval tracker [--scenario S[,S...]] [--variants normal,fast,near]\n"
-    "                       [--iterations N,...] [--subsample K,...] [--body FILE.glb]\n"
-    "                       [--noise on|off] [--json FILE]\n"
+    "                       [--iterations N,...] [--subsample K,...]\n"
+    "                       [--body FILE.glb|procedural] [--noise on|off] [--json FILE]\n"
     "      the depth skeleton tracker against the synthetic ground-truth skeleton (default\n"
     "      turn-and-kick,walk-handheld; bvh:FILE plays on --body, default CesiumMan; an\n"
-    "      explicit --body plays every scenario on it): MPJPE, share of frames tracked, ms\n"
-    "      per frame per speed setting (default 8 iterations, subsample 2); hard cases\n"
-    "      broken down (fast: every 2nd frame; near: the sensor moved up to 1.2 m closer,\n"
-    "      the subject 1.8 m away and cut off)\n";
+    "      explicit --body plays every scenario on it, --body procedural on the procedural\n"
+    "      body): MPJPE, share of frames tracked, ms per frame per speed setting (default 8\n"
+    "      iterations, subsample 2); hard cases broken down (fast: every 2nd frame; near:\n"
+    "      the sensor moved up to 1.2 m closer, the subject 1.8 m away and cut off); per\n"
+    "      joint: mean error, bias (mean error vector in the body frame: x to the subject's\n"
+    "      right, y forward, z up the spine) and spread (RMS about the bias), cm\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-eval", e); }
 

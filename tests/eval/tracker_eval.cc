@@ -82,7 +82,7 @@ struct CaseSum {
 
 Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std::string& variant,
                                 int iterations, int subsample, const TrackerEvalOptions& o,
-                                std::map<std::string, CaseSum>* cases) {
+                                std::map<std::string, CaseSum>* cases, JointErrorTable* joints) {
   capture::SkeletonTrackerOptions to = o.tracker;
   to.fit.iterations = iterations;
   to.subsample = subsample;
@@ -130,6 +130,7 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
       ++row.tracked;
       err = Mpjpe(*r.skeleton, truth);
       errors.push_back(err);
+      joints->Add(*r.skeleton, truth);
     }
     const auto hard = HardCases(truth, previous_truth ? &*previous_truth : nullptr,
                                 step / scene.frame_rate_hz(), camera);
@@ -168,9 +169,14 @@ Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& o) {
       for (size_t i = 0; i < o.iterations.size(); ++i)
         for (size_t k = 0; k < o.subsample.size(); ++k) {
           std::map<std::string, CaseSum> cases;
-          auto row = RunOne(*scene, variant, o.iterations[i], o.subsample[k], o, &cases);
+          JointErrorTable joints;
+          auto row = RunOne(*scene, variant, o.iterations[i], o.subsample[k], o, &cases, &joints);
           if (!row.ok()) return row.error();
           run.rows.push_back(*row);
+          const auto stats = joints.Stats();
+          for (int j = 0; j < kJointCount; ++j)
+            run.joints.push_back(
+                {name, variant, o.iterations[i], o.subsample[k], static_cast<Joint>(j), stats[j]});
           for (const char* name_case : kCases) {
             const auto it = cases.find(name_case);
             if (it == cases.end()) continue;
@@ -222,6 +228,23 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
         .Add("n", static_cast<long long>(c.frames))
         .Add("tracked_rate", c.tracked_rate)
         .Add("mpjpe_cm", c.mpjpe_cm);
+    report.rows.push_back(std::move(row));
+  }
+  for (const TrackerJointRow& j : run.joints) {
+    proto::ReportRow row;
+    row.table = "joints";
+    row.Add("scenario", j.scenario)
+        .Add("variant", j.variant)
+        .Add("iterations", static_cast<long long>(j.iterations))
+        .Add("subsample", static_cast<long long>(j.subsample))
+        .Add("joint", std::string(JointName(j.joint)))
+        .Add("n", static_cast<long long>(j.stats.frames))
+        .Add("mean_cm", j.stats.mean_cm)
+        .Add("bias_x_cm", j.stats.bias_cm.x())
+        .Add("bias_y_cm", j.stats.bias_cm.y())
+        .Add("bias_z_cm", j.stats.bias_cm.z())
+        .Add("bias_cm", j.stats.bias_norm_cm)
+        .Add("spread_cm", j.stats.spread_cm);
     report.rows.push_back(std::move(row));
   }
   return report;
@@ -294,8 +317,9 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
     o.subsample = *list;
   }
   if (auto body = cl.Get("body")) {
-    if (body->empty()) return MakeError("usage", "--body needs a .glb or .gltf path");
-    o.body_path = *body;
+    if (body->empty())
+      return MakeError("usage", "--body needs a .glb or .gltf path, or 'procedural'");
+    o.body_path = *body == "procedural" ? "" : *body;
     o.body_for_all = true;
   }
   if (auto noise = cl.Get("noise")) {

@@ -3,7 +3,8 @@
 // synthetic scene's ground-truth skeleton.
 //
 //   reenact-eval tracker [--scenario S[,S...]] [--variants V[,V...]] [--iterations N[,N...]]
-//                        [--subsample K[,K...]] [--body FILE.glb] [--noise on|off] [--json FILE]
+//                        [--subsample K[,K...]] [--body FILE.glb|procedural] [--noise on|off]
+//                        [--json FILE]
 //
 // Per scenario, variant and speed setting (iterations x subsample), every sensor frame is
 // rendered with Kinect-like depth noise (on by default) and tracked, frames in order through
@@ -26,10 +27,19 @@
 //                   shoulders, neck to waist) at least 10 cm nearer than the torso joint
 //   fast_motion     some joint moved faster than 2 m/s since the previous frame
 //   partly_outside  some joint projects outside the image (the near variant)
-// bvh: scenarios need a skinned body (--body, default ../shared/data/models/CesiumMan.glb);
-// with --body every scenario plays on it (the procedural scenarios retargeted);
-// its ground-truth joints sit where its skin's joints are (skinned_body.h), not where the
-// tracker's anthropometric model puts them, which adds a definitional offset to its error.
+// A third table, "joints", breaks every row down by joint over its tracked frames
+// (joint_error_table.h): mean_cm (mean error), the mean error vector bias_x/y/z_cm in the
+// ground-truth body frame of each frame (x the subject's left to its right, y forward, z up
+// along the spine), its norm bias_cm (a constant offset, such as a rig placing a joint
+// elsewhere than the tracker's model) and spread_cm (RMS of the error less that mean: the
+// tracking error proper).
+// Bodies: the procedural scenarios play on the procedural body and bvh: scenarios on
+// --body (default ../shared/data/models/CesiumMan.glb); --body FILE.glb plays every scenario
+// on that skinned body (the procedural scenarios retargeted), --body procedural every
+// scenario on the procedural body (bvh: retargeted by body_pose_from_skeleton.h, its
+// ground-truth joints where the tracker's model puts them). A skinned body's ground-truth
+// joints sit where its skin's joints are (skinned_body.h), not where the tracker's
+// anthropometric model puts them, which adds a definitional offset to its error.
 
 #include <cstdint>
 #include <optional>
@@ -41,6 +51,7 @@
 #include "common/cli/command_line.h"
 #include "common/error/expected.h"
 #include "proto/report/report_table.h"
+#include "tests/eval/joint_error_table.h"
 
 namespace reenact::eval {
 
@@ -49,7 +60,8 @@ struct TrackerEvalOptions {
   std::vector<std::string> variants{"normal"};                    // normal, fast, near
   std::vector<int> iterations{8};                                 // each >= 1
   std::vector<int> subsample{2};                                  // each >= 1
-  std::string body_path = "../shared/data/models/CesiumMan.glb";  // for bvh: scenarios
+  // The skinned body for bvh: scenarios; empty: the procedural body.
+  std::string body_path = "../shared/data/models/CesiumMan.glb";
   bool body_for_all = false;  // every scenario on body_path (set by --body), not only bvh:
   bool depth_noise = true;
   uint64_t seed = 1;
@@ -73,9 +85,17 @@ struct TrackerCaseRow {
   double tracked_rate = 0, mpjpe_cm = 0;
 };
 
+struct TrackerJointRow {
+  std::string scenario, variant;
+  int iterations = 0, subsample = 0;
+  Joint joint = Joint::kHead;
+  JointErrorStats stats;
+};
+
 struct TrackerEvalRun {
   std::vector<TrackerEvalRow> rows;
   std::vector<TrackerCaseRow> cases;
+  std::vector<TrackerJointRow> joints;  // kJointCount per row, in Joint order
 };
 
 // Errors: "not_found" for an unknown scenario; "usage" for an unknown variant; the scene's
@@ -85,7 +105,9 @@ Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& options);
 // Tables and --json rows (command "tracker"): the main table (scenario, variant, iterations,
 // subsample, n, tracked_rate, mpjpe_cm, p90_cm, calib_frame, losses, recoveries,
 // ms_per_frame, cpu_ms_per_frame) and the table "cases" (scenario, variant, iterations,
-// subsample, case, n, tracked_rate, mpjpe_cm).
+// subsample, case, n, tracked_rate, mpjpe_cm) and the table "joints" (scenario, variant,
+// iterations, subsample, joint, n, mean_cm, bias_x_cm, bias_y_cm, bias_z_cm, bias_cm,
+// spread_cm).
 proto::Report TrackerReport(const TrackerEvalRun& run);
 
 struct TrackerCommand {
@@ -95,6 +117,7 @@ struct TrackerCommand {
 
 std::set<std::string> TrackerFlags();
 
+// --body procedural: every scenario on the procedural body (body_path empty, body_for_all).
 // Errors (code "usage", naming the flag): empty lists or names, numbers that are not whole
 // numbers >= 1, an unknown variant, --noise other than on or off; ("io") an unwritable --json.
 Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& command_line);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -48,6 +49,18 @@ TEST(TrackerCli, Flags) {
   EXPECT_FALSE(r->options.depth_noise);
   EXPECT_EQ(r->options.body_path, "x.glb");
   EXPECT_TRUE(r->options.body_for_all);
+}
+
+TEST(TrackerCli, BodyProceduralPlaysEveryScenarioOnTheProceduralBody) {
+  const auto r = Parse({"--body", "procedural"});
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_TRUE(r->options.body_path.empty());
+  EXPECT_TRUE(r->options.body_for_all);
+  // Without --body, bvh: keeps its default skinned body.
+  const auto d = Parse({"--scenario", "bvh:x.bvh"});
+  ASSERT_TRUE(d.ok()) << d.error().message;
+  EXPECT_EQ(d->options.body_path, "../shared/data/models/CesiumMan.glb");
+  EXPECT_FALSE(d->options.body_for_all);
 }
 
 TEST(TrackerCli, BadInputIsRefused) {
@@ -106,6 +119,33 @@ TEST(TrackerEval, ShortRunTracksEveryFrameAndWritesTheReport) {
        {"\"command\": \"tracker\"", "\"scenario\": \"turn-and-kick\"",
         "\"mpjpe_cm\":", "\"tracked_rate\":", "\"ms_per_frame\":", "\"case\": \"partly_outside\""})
     EXPECT_NE(text.str().find(field), std::string::npos) << field << " in " << text.str();
+  // The joints table: every joint of every row, over the tracked frames.
+  ASSERT_EQ(run->joints.size(), 2u * kJointCount);
+  for (const TrackerJointRow& j : run->joints) {
+    EXPECT_EQ(j.stats.frames, 20);
+    // mean |e|^2 = bias^2 + spread^2 >= (mean |e|)^2 (Jensen).
+    EXPECT_GE(std::hypot(j.stats.bias_norm_cm, j.stats.spread_cm), j.stats.mean_cm - 1e-9);
+    EXPECT_LE(j.stats.bias_norm_cm, j.stats.mean_cm + 1e-9);
+  }
+  EXPECT_NE(text.str().find("\"joint\": \"l_hand\""), std::string::npos);
+}
+
+TEST(TrackerEval, BvhPlaysOnTheProceduralBody) {
+  // ../shared/data from the repository root (this file is tests/eval/ in it).
+  const std::string bvh =
+      (fs::path(__FILE__).parent_path().parent_path().parent_path().parent_path() / "shared" /
+       "data" / "mocap" / "cmu-131_01-walk.bvh")
+          .string();
+  if (!fs::exists(bvh)) GTEST_SKIP() << bvh << " not present";
+  TrackerEvalOptions o;
+  o.scenarios = {"bvh:" + bvh};
+  o.body_path.clear();
+  o.body_for_all = true;
+  o.max_frames = 3;
+  const auto run = RunTrackerEval(o);
+  ASSERT_TRUE(run.ok()) << run.error().message;
+  ASSERT_EQ(run->rows.size(), 1u);
+  EXPECT_EQ(run->rows[0].frames, 3);
 }
 
 }  // namespace
