@@ -107,20 +107,20 @@ struct QualityHarness::State {
   viewer::Renderer renderer;
   PinholeCamera camera;
   std::string gl_renderer;
-  // (stored frame, extended parts) -> GL texture index: the part-label maps follow the shape.
-  std::map<std::pair<int, bool>, int> texture_of_frame;
+  // (stored frame, body shape) -> GL texture index: the part-label maps follow the shape.
+  std::map<std::pair<int, viewer::BodyShape>, int> texture_of_frame;
   std::map<int, int> frame_of_texture;
   std::map<int, ReferenceCrop> crops;  // GL texture index -> the crop as the reference samples it
   std::map<int, ImageLabel8> sensor_labels;  // stored frame -> the scene's labels from the sensor
 
-  int TextureFor(int n, bool extended_parts) {
-    auto it = texture_of_frame.find({n, extended_parts});
+  int TextureFor(int n, viewer::BodyShape shape) {
+    auto it = texture_of_frame.find({n, shape});
     if (it != texture_of_frame.end()) return it->second;
-    const viewer::StoredTexture t = clip.Texture(n, extended_parts);
+    const viewer::StoredTexture t = clip.Texture(n, shape);
     const int index = renderer.UploadTexture(t);
     crops[index] = viewer::ReferenceCropOf(t);
     frame_of_texture[index] = n;
-    return texture_of_frame[{n, extended_parts}] = index;
+    return texture_of_frame[{n, shape}] = index;
   }
 
   SourceLabels LabelsFor(int n) {
@@ -194,7 +194,7 @@ Expected<FrameEvaluation> QualityHarness::Evaluate(const QualityMethod& method, 
   FrameEvaluation e;
   const auto t0 = std::chrono::steady_clock::now();
   e.frame = method.build(s.clip, k, s.camera, *viewer_from_world,
-                         [&s, &method](int n) { return s.TextureFor(n, method.extended_parts); },
+                         [&s, &method](int n) { return s.TextureFor(n, method.shape); },
                          history);
   e.rendered = s.renderer.Render(e.frame.draw);
   e.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

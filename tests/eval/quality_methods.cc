@@ -12,7 +12,7 @@ using viewer::TexturingOptions;
 // cylinders only.
 QualityMethod Method(std::string name, std::string summary, bool steady,
                      const TexturingOptions& texturing) {
-  QualityMethod method{std::move(name), std::move(summary), {}, texturing.extended_parts};
+  QualityMethod method{std::move(name), std::move(summary), {}, texturing.shape};
   method.build = [steady, texturing](const viewer::Reenactment& clip, int k,
                                      const PinholeCamera& camera,
                                      const Eigen::Isometry3d& viewer_from_world,
@@ -70,7 +70,14 @@ const std::vector<QualityMethod>& QualityMethods() {
           "stored masks and depth (common/model/extension_fit.h), in the drawn cylinders and the "
           "stored part-label maps",
           false, Preset("shape")),
-      Method("all", "shape + steady motion: every step of issue 9 together", true, Preset("shape")),
+      Method("profile",
+             "shape + radius rings and an elliptic torso: each part's cross-section varies along "
+             "its axis through 5 rings, the torso's is an ellipse across the shoulders and hips, "
+             "fitted at load from the stored silhouettes of up to 25 frames "
+             "(common/model/cross_section_fit.h)",
+             false, Preset("profile")),
+      Method("all", "profile + steady motion: every step of issue 9 together", true,
+             Preset("profile")),
   };
   return methods;
 }

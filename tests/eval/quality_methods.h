@@ -29,9 +29,9 @@ struct QualityMethod {
   // history (may be null) carries per-part selection from one output frame to the next of the
   // same viewpoint, for hysteresis.
   Build build;
-  // The method draws the clip's extended parts (its TexturingOptions::extended_parts): its stored
-  // textures carry part-label maps of that shape.
-  bool extended_parts = false;
+  // The body shape the method draws (its TexturingOptions::shape): its stored textures carry
+  // part-label maps of that shape.
+  viewer::BodyShape shape = viewer::BodyShape::kCylinders;
 };
 
 // Every method, in the order tables list them.

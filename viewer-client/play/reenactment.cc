@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/error/check.h"
+#include "common/model/cross_section_fit.h"
 #include "common/model/extension_fit.h"
 #include "common/texture/texture_mapping.h"
 #include "common/texture/visibility_maps.h"
@@ -41,10 +42,9 @@ uint16_t PartsInsideCrop(const Skeleton& skeleton_in_sensor, const PinholeCamera
   return mask;
 }
 
-// Frames the part extensions are fitted from: the representative frame (if usable) and up to
-// `others` more usable frames spread evenly over the clip.
-std::vector<int> ExtensionFitFrames(int64_t representative, std::span<const bool> usable,
-                                    int others) {
+// Frames the part extensions and cross-sections are fitted from: the representative frame (if
+// usable) and up to `others` more usable frames spread evenly over the clip.
+std::vector<int> ShapeFitFrames(int64_t representative, std::span<const bool> usable, int others) {
   std::vector<int> usable_frames;
   for (size_t n = 0; n < usable.size(); ++n)
     if (usable[n]) usable_frames.push_back(static_cast<int>(n));
@@ -101,20 +101,31 @@ Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFr
     }
   part_index_ = PartTextureIndex(skeletons_in_sensor_, part_allowed);
 
+  const auto fit_frames_of = [this](std::span<const int> indices,
+                                    std::vector<PinholeCamera>& cameras) {
+    cameras.clear();
+    cameras.reserve(indices.size());
+    std::vector<ExtensionFitFrame> fit_frames;
+    for (int n : indices) {
+      const proto::ClipFrame& f = frames_[n];
+      cameras.push_back(
+          manifest_.color_camera.Cropped(f.crop_x, f.crop_y, f.color.width, f.color.height));
+      fit_frames.push_back({&skeletons_in_sensor_[n], &cameras.back(), &f.mask, &f.depth});
+    }
+    return fit_frames;
+  };
+  const std::span<const bool> usable(usable_.get(), frames_.size());
   std::vector<PinholeCamera> fit_cameras;
-  std::vector<ExtensionFitFrame> fit_frames;
-  const std::vector<int> fit_indices = ExtensionFitFrames(
-      manifest_.representative_frame, std::span<const bool>(usable_.get(), frames_.size()), 8);
-  fit_cameras.reserve(fit_indices.size());
-  for (int n : fit_indices) {
-    const proto::ClipFrame& f = frames_[n];
-    fit_cameras.push_back(
-        manifest_.color_camera.Cropped(f.crop_x, f.crop_y, f.color.width, f.color.height));
-    fit_frames.push_back({&skeletons_in_sensor_[n], &fit_cameras.back(), &f.mask, &f.depth});
-  }
-  part_extensions_ = FitPartExtensions(fit_frames, manifest_.radius_ratio,
-                                       {.depth_scale_m = manifest_.depth_scale_m})
-                         .extension;
+  part_extensions_ =
+      FitPartExtensions(
+          fit_frames_of(ShapeFitFrames(manifest_.representative_frame, usable, 8), fit_cameras),
+          manifest_.radius_ratio, {.depth_scale_m = manifest_.depth_scale_m})
+          .extension;
+  part_shapes_ =
+      FitCrossSections(
+          fit_frames_of(ShapeFitFrames(manifest_.representative_frame, usable, 24), fit_cameras),
+          manifest_.radius_ratio, part_extensions_, {.depth_scale_m = manifest_.depth_scale_m})
+          .shape;
 
   std::vector<Skeleton> in_world;
   std::vector<double> times;
@@ -141,17 +152,21 @@ Eigen::Vector3d Reenactment::SubjectCentre() const {
   return count ? Eigen::Vector3d(sum / count) : Eigen::Vector3d::Zero();
 }
 
-StoredTexture Reenactment::Texture(int n) const {
-  return Texture(n, options_.texturing.extended_parts);
+std::pair<PartExtensions, PartShapes> Reenactment::ShapeOf(BodyShape shape) const {
+  return {shape == BodyShape::kCylinders ? PartExtensions{} : part_extensions_,
+          shape == BodyShape::kProfiled ? part_shapes_ : PartShapes{}};
 }
 
-StoredTexture Reenactment::Texture(int n, bool extended_parts) const {
+StoredTexture Reenactment::Texture(int n) const { return Texture(n, options_.texturing.shape); }
+
+StoredTexture Reenactment::Texture(int n, BodyShape shape) const {
   const proto::ClipFrame& f = frames_.at(n);
   const PinholeCamera camera =
       manifest_.color_camera.Cropped(f.crop_x, f.crop_y, f.color.width, f.color.height);
-  VisibilityMaps maps = MakeVisibilityMaps(skeletons_in_sensor_.at(n), manifest_.radius_ratio,
-                                           camera, f.mask, f.depth, manifest_.depth_scale_m,
-                                           extended_parts ? part_extensions_ : PartExtensions{});
+  const auto [extensions, shapes] = ShapeOf(shape);
+  VisibilityMaps maps =
+      MakeVisibilityMaps(skeletons_in_sensor_.at(n), manifest_.radius_ratio, camera, f.mask,
+                         f.depth, manifest_.depth_scale_m, extensions, shapes);
   return {f.color, f.mask, camera, std::move(maps.part_labels), std::move(maps.depth_m)};
 }
 
@@ -196,8 +211,8 @@ ReenactedFrame Reenactment::BuildPosed(int k, const Skeleton& skeleton_in_world,
       for (auto& part : chosen) part.push_back({out.texture_frame, ranked.front().cost, 1.0});
   }
 
-  const PartExtensions extensions = texturing.extended_parts ? part_extensions_ : PartExtensions{};
-  const auto cylinders = PoseCylinders(viewer_skeleton, manifest_.radius_ratio, extensions);
+  const auto [extensions, shapes] = ShapeOf(texturing.shape);
+  const auto cylinders = PoseCylinders(viewer_skeleton, manifest_.radius_ratio, extensions, shapes);
   for (int p = 0; p < kBodyPartCount; ++p) {
     if (!cylinders[p]) continue;
     const BodyPart part = static_cast<BodyPart>(p);
@@ -205,6 +220,8 @@ ReenactedFrame Reenactment::BuildPosed(int k, const Skeleton& skeleton_in_world,
     draw.a = cylinders[p]->a;
     draw.b = cylinders[p]->b;
     draw.radius = cylinders[p]->radius;
+    draw.shape = cylinders[p]->shape;
+    draw.width_direction = cylinders[p]->width_direction;
     draw.color = PartColor(p);
     draw.part = part;
     draw.texturing = texturing.mode;

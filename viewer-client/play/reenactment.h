@@ -44,6 +44,16 @@ enum class TextureSelection {
   kPerPart,    // common/texture/part_selection.h: ranked candidates per body part
 };
 
+// The body model's shape (issue 9, a closer shape), in the drawn cylinders and in the stored
+// frames' part-label maps alike.
+enum class BodyShape {
+  kCylinders,  // the thesis's cylinders between the joints
+  kExtended,   // the head, forearms and shins extended past their end joints by the clip's
+               // fitted extensions (Reenactment::part_extensions(); extension_fit.h)
+  kProfiled,   // extended, and each part's radius varying along its axis through 5 rings,
+               // the torso elliptic (Reenactment::part_shapes(); cross_section_fit.h)
+};
+
 struct TexturingOptions {
   TextureSelection selection = TextureSelection::kWholeBody;
   TexturingMode mode = TexturingMode::kFirst;  // how the renderer uses the candidates
@@ -52,10 +62,7 @@ struct TexturingOptions {
   // Per-part selection: cost discount of the previous output frame's choice, [0, 1).
   double hysteresis = 0;
   double missing_joint_cost_m = 1.0;  // >= 0, as in Eq. 5
-  // A closer shape (issue 9): every part extended past its end joint by the clip's fitted
-  // extensions (Reenactment::part_extensions(); common/model/extension_fit.h), in the drawn
-  // cylinders and in the stored frames' part-label maps alike. false: the thesis's cylinders.
-  bool extended_parts = false;
+  BodyShape shape = BodyShape::kCylinders;
 
   // Throws CheckError when a field is out of range or the combination is not supported.
   void Check() const;
@@ -88,14 +95,19 @@ class Reenactment {
   // The stored crop of frame n as the renderer uploads it, with its visibility maps
   // (common/texture/visibility_maps.h: part labels of the posed cylinder model, depth in
   // metres), computed here on each call (the caller uploads each frame once). The part labels
-  // come from the shape options().texturing draws (extended_parts), or the one named.
+  // come from the shape options().texturing draws, or the one named.
   StoredTexture Texture(int n) const;
-  StoredTexture Texture(int n, bool extended_parts) const;
+  StoredTexture Texture(int n, BodyShape shape) const;
 
   // Extension of each part past its end joint (cylinder_model.h), fitted at load from the
   // representative frame and up to 8 other usable frames (common/model/extension_fit.h); the
-  // shape TexturingOptions::extended_parts draws.
+  // shape BodyShape::kExtended and kProfiled draw.
   const PartExtensions& part_extensions() const { return part_extensions_; }
+
+  // Cross-sections of each part along its extended axis (radius rings, elliptic torso),
+  // fitted at load from the representative frame and up to 24 other usable frames spread
+  // over the clip (common/model/cross_section_fit.h); the shape BodyShape::kProfiled draws.
+  const PartShapes& part_shapes() const { return part_shapes_; }
 
   // Draw list for output frame k seen by a viewer camera, with options().texturing.
   // texture_for_frame maps a stored frame index to the renderer's texture index (the caller
@@ -132,6 +144,10 @@ class Reenactment {
   PartTextureIndex part_index_;
   std::vector<Skeleton> steady_in_world_;  // the steady track, world frame
   PartExtensions part_extensions_{};
+  PartShapes part_shapes_{};
+
+  // The extensions and cross-sections a shape draws with.
+  std::pair<PartExtensions, PartShapes> ShapeOf(BodyShape shape) const;
 };
 
 }  // namespace reenact::viewer

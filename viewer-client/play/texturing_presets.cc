@@ -6,7 +6,7 @@
 namespace reenact::viewer {
 namespace {
 
-constexpr std::array<std::pair<std::string_view, TexturingOptions>, 5> kPresets = {{
+constexpr std::array<std::pair<std::string_view, TexturingOptions>, 6> kPresets = {{
     {"thesis", {}},
     {"per-part", {.selection = TextureSelection::kPerPart}},
     {"occlusion",
@@ -23,7 +23,13 @@ constexpr std::array<std::pair<std::string_view, TexturingOptions>, 5> kPresets 
       .mode = TexturingMode::kBlendVisible,
       .candidates = kMaxTextureCandidates,
       .hysteresis = 0.1,
-      .extended_parts = true}},
+      .shape = BodyShape::kExtended}},
+    {"profile",
+     {.selection = TextureSelection::kPerPart,
+      .mode = TexturingMode::kBlendVisible,
+      .candidates = kMaxTextureCandidates,
+      .hysteresis = 0.1,
+      .shape = BodyShape::kProfiled}},
 }};
 
 }  // namespace

@@ -6,7 +6,9 @@
 //   per-part   per-part selection (common/texture/part_selection.h), one frame per part
 //   occlusion  per-part, the 3 best frames per part, the first visible one per fragment
 //   blend      per-part, the visible ones of the 3 best blended by weight, hysteresis 0.1
-//   shape      blend with the parts extended past their end joints (extended_parts)
+//   shape      blend with the parts extended past their end joints (BodyShape::kExtended)
+//   profile    shape with radius rings along every part and an elliptic torso
+//              (BodyShape::kProfiled)
 
 #include <string>
 #include <string_view>
@@ -16,9 +18,10 @@
 
 namespace reenact::viewer {
 
-// The viewer's default (reenact-viewer play, reenact-bench viewer): the step that wins on
-// PSNR, SSIM, silhouette IoU and wrong-part rate at every view in docs/measurements.md.
-inline constexpr std::string_view kDefaultTexturingPreset = "shape";
+// The viewer's default (reenact-viewer play, reenact-bench viewer): the step with the lowest
+// wrong-part rate at every view and the best PSNR, SSIM and IoU at most views in
+// docs/measurements.md, at the same frame rate as `shape`.
+inline constexpr std::string_view kDefaultTexturingPreset = "profile";
 
 // The names above, in that order, comma separated (for usage messages).
 std::string TexturingPresetNames();

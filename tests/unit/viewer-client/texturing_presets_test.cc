@@ -18,11 +18,14 @@ TEST(TexturingPresets, EachAddsOneStepAndAllPassCheck) {
   const TexturingOptions blend = TexturingPreset("blend").value();
   EXPECT_EQ(blend.mode, TexturingMode::kBlendVisible);
   EXPECT_GT(blend.hysteresis, 0.0);
-  EXPECT_FALSE(blend.extended_parts);
+  EXPECT_EQ(blend.shape, BodyShape::kCylinders);
   const TexturingOptions shape = TexturingPreset("shape").value();
-  EXPECT_TRUE(shape.extended_parts);
+  EXPECT_EQ(shape.shape, BodyShape::kExtended);
   EXPECT_EQ(shape.mode, TexturingMode::kBlendVisible);
-  for (const TexturingOptions& o : {thesis, per_part, occlusion, blend, shape})
+  const TexturingOptions profile = TexturingPreset("profile").value();
+  EXPECT_EQ(profile.shape, BodyShape::kProfiled);
+  EXPECT_EQ(profile.mode, TexturingMode::kBlendVisible);
+  for (const TexturingOptions& o : {thesis, per_part, occlusion, blend, shape, profile})
     EXPECT_NO_THROW(o.Check());
 }
 
@@ -30,7 +33,8 @@ TEST(TexturingPresets, UnknownNameIsAUsageErrorListingTheKnownOnes) {
   const auto r = TexturingPreset("Blend");
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().code, "usage");
-  EXPECT_NE(r.error().message.find("thesis, per-part, occlusion, blend, shape"), std::string::npos);
+  EXPECT_NE(r.error().message.find("thesis, per-part, occlusion, blend, shape, profile"),
+            std::string::npos);
 }
 
 }  // namespace
