@@ -9,46 +9,31 @@
 #include "common/error/check.h"
 #include "tests/unit/common/cylinder_raycast.h"
 #include "tests/unit/common/shaped_cylinder_raycast.h"
+#include "tests/unit/common/test_part_shapes.h"
 #include "tests/unit/common/test_skeletons.h"
 
 namespace reenact {
 namespace {
 
+using testing::Cone;
+using testing::LinearRings;
 using testing::RayCastCylinders;
 using testing::RayCastShapedCylinders;
 using testing::StandingPerson;
+using testing::Uniform;
 
 constexpr double kDeg = std::numbers::pi / 180;
-
-std::array<double, kShapeRings> Linear(double first, double last) {
-  std::array<double, kShapeRings> r{};
-  for (int k = 0; k < kShapeRings; ++k) r[k] = first + (last - first) * k / (kShapeRings - 1);
-  return r;
-}
-
-PartShape Tapered(double first, double last) {
-  PartShape s;
-  s.width = s.depth = Linear(first, last);
-  return s;
-}
-
-PartShape Elliptic(double width, double depth) {
-  PartShape s;
-  s.width.fill(width);
-  s.depth.fill(depth);
-  return s;
-}
 
 // Limbs tapered (0.8 .. 1.3 and reversed), both torso parts elliptic (1.3 x 0.7).
 PartShapes TruthShapes() {
   PartShapes shapes{};
-  shapes[Index(BodyPart::kLeftThigh)] = Tapered(1.3, 0.8);
-  shapes[Index(BodyPart::kRightThigh)] = Tapered(1.2, 0.9);
-  shapes[Index(BodyPart::kLeftUpperArm)] = Tapered(1.3, 0.8);
-  shapes[Index(BodyPart::kRightForearm)] = Tapered(0.8, 1.3);
-  shapes[Index(BodyPart::kLeftShin)] = Tapered(1.1, 0.8);
-  shapes[Index(BodyPart::kUpperTorso)] = Elliptic(1.3, 0.7);
-  shapes[Index(BodyPart::kLowerTorso)] = Elliptic(1.3, 0.7);
+  shapes[Index(BodyPart::kLeftThigh)] = Cone(1.3, 0.8);
+  shapes[Index(BodyPart::kRightThigh)] = Cone(1.2, 0.9);
+  shapes[Index(BodyPart::kLeftUpperArm)] = Cone(1.3, 0.8);
+  shapes[Index(BodyPart::kRightForearm)] = Cone(0.8, 1.3);
+  shapes[Index(BodyPart::kLeftShin)] = Cone(1.1, 0.8);
+  shapes[Index(BodyPart::kUpperTorso)] = Uniform(1.3, 0.7);
+  shapes[Index(BodyPart::kLowerTorso)] = Uniform(1.3, 0.7);
   return shapes;
 }
 
@@ -224,7 +209,7 @@ std::vector<CrossSectionFitFrame> Frames(const std::vector<Scene>& scenes) {
 // which copying W from ring 1 (0.04 narrower) would miss.
 TEST(CrossSectionFit, EllipticTorsoFromSeveralHeadings) {
   PartShapes truth = TruthShapes();
-  truth[Index(BodyPart::kUpperTorso)].width = Linear(1.35, 0.95);
+  truth[Index(BodyPart::kUpperTorso)].width = LinearRings(1.35, 0.95);
   const std::vector<Scene> scenes =
       Headings({0, 30, 60, 90, 120, 150, 180, 210, 240, 270, 300, 330}, truth);
   const auto frames = Frames(scenes);
@@ -286,8 +271,8 @@ TEST(CrossSectionFit, MedianOverFramesOutvotesAWrongFrame) {
   // the median of pairs, its intercept the median of frames), within the bounds above.
   const Skeleton person = StandingPerson(2.5, 0.0, true);
   PartShapes fat = TruthShapes();
-  fat[Index(BodyPart::kLeftThigh)] = Tapered(2.0, 2.0);
-  fat[Index(BodyPart::kLowerTorso)] = Elliptic(2.0, 2.0);
+  fat[Index(BodyPart::kLeftThigh)] = Cone(2.0, 2.0);
+  fat[Index(BodyPart::kLowerTorso)] = Uniform(2.0, 2.0);
   std::vector<Scene> scenes = Headings({0, 30, 60, 90, 120, 150, 180, 270}, TruthShapes());
   scenes.push_back(MakeScene(person, fat));
   std::vector<Scene> limb_scenes;
@@ -355,8 +340,8 @@ TEST(CrossSectionFit, ExtrapolatedEndRingsReachTheEnds) {
 TEST(CrossSectionFit, RatiosAreClamped) {
   const Skeleton person = StandingPerson(2.5, 0.0, true);
   PartShapes truth{};
-  truth[Index(BodyPart::kLeftForearm)] = Tapered(1.8, 1.8);
-  truth[Index(BodyPart::kRightForearm)] = Tapered(0.6, 0.6);
+  truth[Index(BodyPart::kLeftForearm)] = Cone(1.8, 1.8);
+  truth[Index(BodyPart::kRightForearm)] = Cone(0.6, 0.6);
   const Scene scene = MakeScene(person, truth);
   const CrossSectionFitFrame frame = scene.Frame();
   const auto fit = FitCrossSections({&frame, 1}, DefaultRadiusRatios(), {},
@@ -374,7 +359,7 @@ TEST(CrossSectionFit, ATouchingNeighbourIsNotTheSilhouette) {
   // ring is not measured).
   const Skeleton person = StandingPerson(2.5, 0.0, /*arms_out=*/false);
   PartShapes truth{};
-  truth[Index(BodyPart::kUpperTorso)] = Elliptic(1.3, 0.7);
+  truth[Index(BodyPart::kUpperTorso)] = Uniform(1.3, 0.7);
   const Scene scene = MakeScene(person, truth);
   const CrossSectionFitFrame frame = scene.Frame();
   const auto measured = MeasureCrossSections(frame, DefaultRadiusRatios(), {});
@@ -399,7 +384,7 @@ TEST(CrossSectionFit, AForearmInFrontOfTheTorsoKeepsItsPixelsByDepth) {
   person.Set(Joint::kRightElbow, Eigen::Vector3d(-0.3, -0.15, 2.2));
   person.Set(Joint::kRightHand, Eigen::Vector3d(0.1, -0.1, 2.15));
   PartShapes truth{};
-  truth[Index(BodyPart::kRightForearm)] = Tapered(1.3, 0.8);
+  truth[Index(BodyPart::kRightForearm)] = Cone(1.3, 0.8);
   const Scene scene = MakeScene(person, truth);
   const auto measured = MeasureCrossSections(scene.Frame(), DefaultRadiusRatios(), {});
   ExpectMeasuredRings(measured, truth[Index(BodyPart::kRightForearm)], person,

@@ -9,10 +9,14 @@
 #include "common/error/check.h"
 #include "common/texture/part_label_map.h"
 #include "common/texture/visibility_maps.h"
+#include "tests/unit/common/test_part_shapes.h"
 #include "tests/unit/common/test_skeletons.h"
 
 namespace reenact {
 namespace {
+
+using testing::Cone;
+using testing::Uniform;
 
 PinholeCamera Camera() { return PinholeCamera{160, 120, 200, 200, 80.3, 60.7, {}}; }
 
@@ -20,20 +24,6 @@ using Cylinders = std::array<std::optional<Cylinder>, kBodyPartCount>;
 constexpr BodyPart kTorso = BodyPart::kLowerTorso;
 constexpr BodyPart kArm = BodyPart::kLeftUpperArm;
 constexpr BodyPart kWall = BodyPart::kRightThigh;  // a wide plain part behind everything
-
-PartShape Uniform(double width, double depth) {
-  PartShape shape;
-  shape.width.fill(width);
-  shape.depth.fill(depth);
-  return shape;
-}
-
-PartShape Cone(double from, double to) {
-  PartShape shape;
-  for (int k = 0; k < kShapeRings; ++k)
-    shape.width[k] = shape.depth[k] = from + (to - from) * k / (kShapeRings - 1);
-  return shape;
-}
 
 Eigen::Vector3d Ray(const PinholeCamera& cam, double u, double v) {
   return Eigen::Vector3d((u - cam.cx) / cam.fx, (v - cam.cy) / cam.fy, 1.0);

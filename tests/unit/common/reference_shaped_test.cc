@@ -11,27 +11,16 @@
 
 #include "common/error/check.h"
 #include "common/render/reference_renderer.h"
+#include "tests/unit/common/test_part_shapes.h"
 
 namespace reenact {
 namespace {
 
+using testing::Cone;
+using testing::Uniform;
+
 // Principal point off the pixel grid, to catch half-pixel errors.
 PinholeCamera Camera() { return PinholeCamera{160, 120, 200, 200, 80.3, 60.7, {}}; }
-
-PartShape Uniform(double width, double depth) {
-  PartShape shape;
-  shape.width.fill(width);
-  shape.depth.fill(depth);
-  return shape;
-}
-
-// Rings growing linearly from `from` at a to `to` at b (a cone frustum).
-PartShape Cone(double from, double to) {
-  PartShape shape;
-  for (int k = 0; k < kShapeRings; ++k)
-    shape.width[k] = shape.depth[k] = from + (to - from) * k / (kShapeRings - 1);
-  return shape;
-}
 
 ReferencePart Part(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double radius,
                    const PartShape& shape,

@@ -104,7 +104,12 @@ struct UploadedFrames {
 
 class GlReferenceAgreement : public ::testing::TestWithParam<double> {};
 
-TEST_P(GlReferenceAgreement, ReenactedFrameAgreesWithTheCpuReference) {
+// The recorded clip's frames 10 (calibration pose) and 55 (arms down, turning and stepping),
+// each built by Reenactment::Build for an orbit view turned by angle_deg, bones cleared, handed
+// to `check` with the renderer and the uploads (every stored frame with its visibility maps).
+void ForEachOrbitFrame(
+    double angle_deg,
+    const std::function<void(int k, ReenactedFrame&, Renderer&, UploadedFrames&)>& check) {
   const Reenactment& clip = RecordedClip();
   ASSERT_EQ(clip.frame_count(), 60);
   Expected<Renderer> renderer = Renderer::CreateHeadless(kWidth, kHeight);
@@ -114,23 +119,38 @@ TEST_P(GlReferenceAgreement, ReenactedFrameAgreesWithTheCpuReference) {
   const auto texture_for_frame = [&uploaded](int n) { return uploaded(n); };
 
   OrbitCameraOptions orbit;
-  orbit.angle_deg = GetParam();
+  orbit.angle_deg = angle_deg;
   const auto view = OrbitViewFor(clip, orbit);
   ASSERT_TRUE(view.has_value());
   const PinholeCamera camera = ScaledViewerCamera(clip.manifest().color_camera, kWidth, kHeight);
-  for (int k : {10, 55}) {  // calibration pose; arms down, turning and stepping
+  for (int k : {10, 55}) {
     ReenactedFrame frame = clip.Build(k, camera, view->viewer_from_world, texture_for_frame);
     frame.draw.bones.clear();
     ASSERT_GE(frame.texture_frame, 0);
-    const RenderedFrame gl = renderer->Render(frame.draw);
-    const ReferenceRender ref = uploaded.RenderReferenceOf(frame.draw);
-
-    const Agreement a = Compare(gl, ref);
-    EXPECT_GT(a.both, 5000) << "k " << k;  // the subject fills a good part of the view
-    EXPECT_GT(a.textured, a.both / 2) << "k " << k;
-    EXPECT_GE(a.iou, 0.98) << "k " << k;
-    EXPECT_LE(a.colour_mae, 2.0) << "k " << k;
+    check(k, frame, *renderer, uploaded);
   }
+}
+
+// The GL rendering against the reference's: the subject fills a good part of the view, mostly
+// textured (or wholly untextured), silhouettes and colours agree.
+void ExpectAgreement(const RenderedFrame& gl, const ReferenceRender& ref, int k,
+                     bool textured = true) {
+  const Agreement a = Compare(gl, ref);
+  EXPECT_GT(a.both, 5000) << "k " << k;
+  if (textured) {
+    EXPECT_GT(a.textured, a.both / 2) << "k " << k;
+  } else {
+    EXPECT_EQ(a.textured, 0) << "k " << k;
+  }
+  EXPECT_GE(a.iou, 0.98) << "k " << k;
+  EXPECT_LE(a.colour_mae, 2.0) << "k " << k;
+}
+
+TEST_P(GlReferenceAgreement, ReenactedFrameAgreesWithTheCpuReference) {
+  ForEachOrbitFrame(
+      GetParam(), [](int k, ReenactedFrame& frame, Renderer& renderer, UploadedFrames& uploaded) {
+        ExpectAgreement(renderer.Render(frame.draw), uploaded.RenderReferenceOf(frame.draw), k);
+      });
 }
 
 INSTANTIATE_TEST_SUITE_P(OrbitAngles, GlReferenceAgreement, ::testing::Values(0.0, 60.0, 150.0));
@@ -165,26 +185,13 @@ void GiveThreeCandidates(const Reenactment& clip, int n0, TexturingMode mode,
 class GlReferenceModeAgreement : public ::testing::TestWithParam<ModeCase> {};
 
 TEST_P(GlReferenceModeAgreement, CandidatesAndVisibilityAgreeWithTheCpuReference) {
-  const Reenactment& clip = RecordedClip();
-  ASSERT_EQ(clip.frame_count(), 60);
-  Expected<Renderer> renderer = Renderer::CreateHeadless(kWidth, kHeight);
-  ASSERT_TRUE(renderer.ok()) << renderer.error().message;
-
-  UploadedFrames uploaded{clip, *renderer, {}, {}, {}};
-  const auto texture_for_frame = [&uploaded](int n) { return uploaded(n); };
-
-  OrbitCameraOptions orbit;
-  orbit.angle_deg = GetParam().angle_deg;
-  const auto view = OrbitViewFor(clip, orbit);
-  ASSERT_TRUE(view.has_value());
-  const PinholeCamera camera = ScaledViewerCamera(clip.manifest().color_camera, kWidth, kHeight);
-  for (int k : {10, 55}) {
-    ReenactedFrame frame = clip.Build(k, camera, view->viewer_from_world, texture_for_frame);
-    frame.draw.bones.clear();
-    ASSERT_GE(frame.texture_frame, 0);
+  const ModeCase param = GetParam();
+  ForEachOrbitFrame(param.angle_deg, [param](int k, ReenactedFrame& frame, Renderer& renderer,
+                                             UploadedFrames& uploaded) {
     const int n0 = frame.texture_frame;
-    GiveThreeCandidates(clip, n0, GetParam().mode, texture_for_frame, frame.draw);
-    const RenderedFrame gl = renderer->Render(frame.draw);
+    GiveThreeCandidates(
+        RecordedClip(), n0, param.mode, [&uploaded](int n) { return uploaded(n); }, frame.draw);
+    const RenderedFrame gl = renderer.Render(frame.draw);
     const ReferenceRender ref = uploaded.RenderReferenceOf(frame.draw);
     for (const auto& [texture, crop] : uploaded.crop_of_texture) {
       EXPECT_FALSE(crop.part_labels.empty());  // every stored frame carries its visibility maps
@@ -198,18 +205,14 @@ TEST_P(GlReferenceModeAgreement, CandidatesAndVisibilityAgreeWithTheCpuReference
         past_first += ref.source_frame.at(x, y, 0) >= 0 && ref.source_frame.at(x, y, 0) != n0;
         blended += ref.source_frame.at(x, y, 1) >= 0;
       }
-    if (GetParam().mode == TexturingMode::kBlendVisible) {
+    if (param.mode == TexturingMode::kBlendVisible) {
       EXPECT_GT(blended, 500) << "k " << k;
     } else {
       EXPECT_GT(past_first, 200) << "k " << k;
       EXPECT_EQ(blended, 0);
     }
-    const Agreement a = Compare(gl, ref);
-    EXPECT_GT(a.both, 5000) << "k " << k;
-    EXPECT_GT(a.textured, a.both / 2) << "k " << k;
-    EXPECT_GE(a.iou, 0.98) << "k " << k;
-    EXPECT_LE(a.colour_mae, 2.0) << "k " << k;
-  }
+    ExpectAgreement(gl, ref, k);
+  });
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, GlReferenceModeAgreement,
@@ -260,30 +263,17 @@ struct ShapedCase {
 class GlReferenceShapedAgreement : public ::testing::TestWithParam<ShapedCase> {};
 
 TEST_P(GlReferenceShapedAgreement, ShapedCylindersAgreeWithTheCpuReference) {
-  const Reenactment& clip = RecordedClip();
-  ASSERT_EQ(clip.frame_count(), 60);
-  Expected<Renderer> renderer = Renderer::CreateHeadless(kWidth, kHeight);
-  ASSERT_TRUE(renderer.ok()) << renderer.error().message;
-
-  UploadedFrames uploaded{clip, *renderer, {}, {}, {}};
-  const auto texture_for_frame = [&uploaded](int n) { return uploaded(n); };
-
-  OrbitCameraOptions orbit;
-  orbit.angle_deg = GetParam().angle_deg;
-  const auto view = OrbitViewFor(clip, orbit);
-  ASSERT_TRUE(view.has_value());
-  const PinholeCamera camera = ScaledViewerCamera(clip.manifest().color_camera, kWidth, kHeight);
-  for (int k : {10, 55}) {
-    ReenactedFrame frame = clip.Build(k, camera, view->viewer_from_world, texture_for_frame);
-    frame.draw.bones.clear();
-    ASSERT_GE(frame.texture_frame, 0);
-    frame.draw.textured = GetParam().textured;
-    if (GetParam().mode != TexturingMode::kFirst)
-      GiveThreeCandidates(clip, frame.texture_frame, GetParam().mode, texture_for_frame,
-                          frame.draw);
+  const ShapedCase param = GetParam();
+  ForEachOrbitFrame(param.angle_deg, [param](int k, ReenactedFrame& frame, Renderer& renderer,
+                                             UploadedFrames& uploaded) {
+    frame.draw.textured = param.textured;
+    if (param.mode != TexturingMode::kFirst)
+      GiveThreeCandidates(
+          RecordedClip(), frame.texture_frame, param.mode,
+          [&uploaded](int n) { return uploaded(n); }, frame.draw);
     const ReferenceRender plain = uploaded.RenderReferenceOf(frame.draw);
     ShapeCylinders(frame.draw);
-    const RenderedFrame gl = renderer->Render(frame.draw);
+    const RenderedFrame gl = renderer.Render(frame.draw);
     const ReferenceRender ref = uploaded.RenderReferenceOf(frame.draw);
 
     // The shapes must act: the silhouette differs from the plain cylinders' by many pixels.
@@ -291,17 +281,8 @@ TEST_P(GlReferenceShapedAgreement, ShapedCylindersAgreeWithTheCpuReference) {
     for (size_t i = 0; i < ref.mask.data.size(); ++i)
       changed += ref.mask.data[i] != plain.mask.data[i];
     EXPECT_GT(changed, 300) << "k " << k;
-
-    const Agreement a = Compare(gl, ref);
-    EXPECT_GT(a.both, 5000) << "k " << k;
-    if (GetParam().textured) {
-      EXPECT_GT(a.textured, a.both / 2) << "k " << k;
-    } else {
-      EXPECT_EQ(a.textured, 0) << "k " << k;
-    }
-    EXPECT_GE(a.iou, 0.98) << "k " << k;
-    EXPECT_LE(a.colour_mae, 2.0) << "k " << k;
-  }
+    ExpectAgreement(gl, ref, k, param.textured);
+  });
 }
 
 INSTANTIATE_TEST_SUITE_P(Shapes, GlReferenceShapedAgreement,
