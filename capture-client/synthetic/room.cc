@@ -66,9 +66,8 @@ void Bake(RoomFace* f) {
 
 Eigen::Vector3d SceneLightDirection() { return Vector3d(0.3, -0.6, 0.75).normalized(); }
 
-double LambertShade(const Vector3d& n) {
-  constexpr double kAmbient = 0.5;
-  return kAmbient + (1 - kAmbient) * std::max(0.0, n.dot(SceneLightDirection()));
+double LambertShade(const Vector3d& n, double ambient) {
+  return ambient + (1 - ambient) * std::max(0.0, n.dot(SceneLightDirection()));
 }
 
 RoomModel BuildRoom() {

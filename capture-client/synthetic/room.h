@@ -21,8 +21,11 @@ namespace reenact::capture {
 
 // Direction towards the scene's directional light, world frame, unit length.
 Eigen::Vector3d SceneLightDirection();
-// Lambert factor ambient + (1 - ambient) * max(0, n . l) for a world normal.
-double LambertShade(const Eigen::Vector3d& normal_in_world);
+// Ambient share of the scene's Lambert shading (the rest follows the directional light).
+inline constexpr double kSceneAmbient = 0.5;
+// Lambert factor ambient + (1 - ambient) * max(0, n . l) for a world normal; ambient in
+// [0, 1] (1: lit flat, the factor 1 whatever the normal).
+double LambertShade(const Eigen::Vector3d& normal_in_world, double ambient = kSceneAmbient);
 
 struct RoomFace {
   Eigen::Vector3d origin;  // world position of texture coordinate (0, 0), metres

@@ -496,7 +496,7 @@ Expected<SkinPose> SkinnedBody::RetargetPose(const Skeleton& target) const {
 }
 
 void SkinnedBody::Draw(const PosedSkin& posed, const Eigen::Isometry3d& camera_from_world,
-                       Rasterizer* r, SyntheticView* view) const {
+                       Rasterizer* r, SyntheticView* view, double ambient) const {
   REENACT_CHECK(r->options().attribute_count >= 5, "drawing a skin needs 5 raster attributes");
   const Data& d = *data_;
   REENACT_CHECK(posed.positions.size() == d.model.vertices.size(), "posed skin of another body");
@@ -504,7 +504,7 @@ void SkinnedBody::Draw(const PosedSkin& posed, const Eigen::Isometry3d& camera_f
     const Eigen::Vector2d uv(f.attributes[0], f.attributes[1]);
     const Vector3d normal =
         Vector3d(f.attributes[2], f.attributes[3], f.attributes[4]).normalized();
-    const Vector3d c = SampleBaseColor(d.model, uv) * (LambertShade(normal) * 255.0);
+    const Vector3d c = SampleBaseColor(d.model, uv) * (LambertShade(normal, ambient) * 255.0);
     for (int k = 0; k < 3; ++k)
       view->color.at(f.x, f.y, k) = static_cast<uint8_t>(std::clamp(c[k] + 0.5, 0.0, 255.0));
     view->mask.at(f.x, f.y) = 255;

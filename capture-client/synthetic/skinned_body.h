@@ -146,8 +146,9 @@ class SkinnedBody {
   // (bilinear texture sample times the factor) times LambertShade of the world normal, mask
   // 255, part label of the triangle, depth through the rasteriser. The rasteriser needs
   // attribute_count >= 5 (u, v, normal); back faces are culled as its options say.
+  // ambient: LambertShade's ambient share (room.h).
   void Draw(const PosedSkin& posed, const Eigen::Isometry3d& camera_from_world, Rasterizer* r,
-            SyntheticView* view) const;
+            SyntheticView* view, double ambient = kSceneAmbient) const;
 
   struct Data;
 

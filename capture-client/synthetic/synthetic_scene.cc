@@ -63,13 +63,14 @@ void DrawRoom(const RoomModel& room, const Eigen::Isometry3d& camera_from_world,
 }
 
 void DrawBody(const std::array<SegmentMesh, kSegmentCount>& meshes, const PosedBody& body,
-              const Eigen::Isometry3d& camera_from_world, Rasterizer* r, SyntheticView* view) {
+              const Eigen::Isometry3d& camera_from_world, double ambient, Rasterizer* r,
+              SyntheticView* view) {
   auto shader = [&](const RasterFragment& f) {
     const Segment segment = static_cast<Segment>(f.primitive_id);
     const Eigen::Vector3d local(f.attributes[0], f.attributes[1], f.attributes[2]);
     const Eigen::Vector3d normal =
         Eigen::Vector3d(f.attributes[3], f.attributes[4], f.attributes[5]).normalized();
-    const Color c = BodyAlbedo(segment, local) * (LambertShade(normal) * 255.0);
+    const Color c = BodyAlbedo(segment, local) * (LambertShade(normal, ambient) * 255.0);
     for (int k = 0; k < 3; ++k) view->color.at(f.x, f.y, k) = ToByte(static_cast<float>(c[k]));
     view->mask.at(f.x, f.y) = 255;
     view->part_labels.at(f.x, f.y) = static_cast<uint8_t>(PartLabel(SegmentPart(segment)));
@@ -122,6 +123,8 @@ Expected<SyntheticScene> SyntheticScene::Create(std::string_view scenario, uint6
   data->seed = seed;
   data->camera = PinholeCamera::KinectLike();
   data->room = SharedRoom();
+  if (!(std::isfinite(body.ambient) && body.ambient >= 0 && body.ambient <= 1))
+    return MakeError("invalid_argument", "the subject's ambient light share must be in [0, 1]");
   data->body_spec = body;
   const Scenario& sc = data->scenario;
   if (!body.skinned()) {
@@ -204,11 +207,12 @@ SyntheticView SyntheticScene::Render(int frame, const PinholeCamera& camera,
   view.part_labels = ImageLabel8(camera.width, camera.height, 1, kBackgroundLabel);
   const Eigen::Isometry3d camera_from_world = world_from_camera.inverse();
   if (options.draw_room) DrawRoom(*data_->room, camera_from_world, &r, &view);
+  const double ambient = data_->body_spec.ambient;
   if (options.draw_subject && data_->skinned)
     data_->skinned->Draw(data_->skinned->Skin(data_->skin_poses[frame]), camera_from_world, &r,
-                         &view);
+                         &view, ambient);
   else if (options.draw_subject)
-    DrawBody(data_->body, data_->posed[frame], camera_from_world, &r, &view);
+    DrawBody(data_->body, data_->posed[frame], camera_from_world, ambient, &r, &view);
 
   const Image<double>& z = r.depth();
   for (size_t i = 0; i < z.data.size(); ++i) {

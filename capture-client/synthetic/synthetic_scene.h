@@ -21,6 +21,7 @@
 #include <Eigen/Geometry>
 
 #include "capture-client/synthetic/depth_noise.h"
+#include "capture-client/synthetic/room.h"
 #include "common/error/expected.h"
 #include "common/geometry/pinhole_camera.h"
 #include "common/image/image.h"
@@ -67,6 +68,12 @@ struct SyntheticRenderOptions {
 struct SyntheticBodySpec {
   std::string gltf_path;
   double height_m = 0;
+  // The subject's lighting: the ambient share of its Lambert shading (room.h), in [0, 1].
+  // kSceneAmbient: lit by the scene's directional light, so a surface is as bright as it
+  // faces the light at that frame; 1: lit flat, its albedo as it is from every side (no
+  // shading for image-based texturing to carry from one pose to another). The room keeps
+  // the scene's light.
+  double ambient = kSceneAmbient;
 
   bool skinned() const { return !gltf_path.empty(); }
 };

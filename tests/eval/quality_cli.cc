@@ -58,8 +58,8 @@ fs::path NearestExisting(const fs::path& path) {
 }  // namespace
 
 std::set<std::string> QualityFlags() {
-  return {"scenario", "body",     "methods", "views",       "step",
-          "json",     "markdown", "images",  "image-pairs", "skeleton-noise"};
+  return {"scenario", "body",   "methods",     "views",          "step",    "json",
+          "markdown", "images", "image-pairs", "skeleton-noise", "lighting"};
 }
 
 Status CheckWritableFile(const std::string& flag, const std::string& path) {
@@ -132,6 +132,10 @@ Expected<QualityCommand> ParseQualityCommand(const CommandLine& cl) {
     return MakeError("usage", "--skeleton-noise must be metres in [0, 1] (e.g. 0.02), got " +
                                   std::to_string(*noise));
   o.skeleton_noise_m = *noise;
+  const std::string lighting = cl.GetOr("lighting", "scene");
+  if (lighting != "scene" && lighting != "flat")
+    return MakeError("usage", "--lighting must be scene or flat, got '" + lighting + "'");
+  o.flat_lighting = lighting == "flat";
 
   if (auto text = cl.Get("image-pairs")) {
     if (!cl.Has("images"))

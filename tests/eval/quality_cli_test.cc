@@ -159,5 +159,18 @@ TEST(QualityCli, RefusesSkeletonNoiseThatIsNotANumber) {
   ExpectError({"--skeleton-noise", "lots"}, "usage", "skeleton-noise");
 }
 
+TEST(QualityCli, ParsesLighting) {
+  const auto flat = Parse({"--lighting", "flat"});
+  ASSERT_TRUE(flat.ok()) << flat.error().message;
+  EXPECT_TRUE(flat->options.flat_lighting);
+  const auto scene = Parse({});
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  EXPECT_FALSE(scene->options.flat_lighting);
+}
+
+TEST(QualityCli, RefusesAnUnknownLighting) {
+  ExpectError({"--lighting", "studio"}, "usage", "--lighting must be scene or flat");
+}
+
 }  // namespace
 }  // namespace reenact::eval

@@ -32,7 +32,8 @@ struct OpenedScenario {
   std::unique_ptr<capture::FrameSource> source;
 };
 Expected<OpenedScenario> OpenScenario(const QualityOptions& options) {
-  const capture::SyntheticBodySpec body{.gltf_path = options.body};
+  const capture::SyntheticBodySpec body{
+      .gltf_path = options.body, .ambient = options.flat_lighting ? 1.0 : capture::kSceneAmbient};
   auto scene = capture::SyntheticScene::Create(options.scenario, 1, body);
   if (!scene.ok()) return scene.error();
   auto source = capture::SyntheticSource::Open(options.scenario, 1, body);

@@ -56,6 +56,10 @@ struct QualityOptions {
   // it pushes past the bone-length check are flagged by the recorder as for real ones. The
   // ground truth stays exact.
   double skeleton_noise_m = 0;
+  // The subject lit flat (SyntheticBodySpec::ambient 1, no directional light) in the recording
+  // and in the ground truth alike: no shading for texturing to carry from one pose to
+  // another, so what stays is geometry and texture choice. Default: the scene's light.
+  bool flat_lighting = false;
   std::vector<double> views_deg = {0, 30, 60, 90, 135, 180};  // finite
   int frame_step = 10;  // >= 1: frames 0, step, 2 step, ... are compared
   int width = 640;      // output size, >= 16 each

@@ -105,6 +105,7 @@ std::string QualityCommandLine(const QualityOptions& options) {
   line << " --step " << options.frame_step;
   if (options.skeleton_noise_m > 0)
     line << " --skeleton-noise " << Number(options.skeleton_noise_m);
+  if (options.flat_lighting) line << " --lighting flat";
   if (!options.image_dir.empty() && !options.image_pairs.empty()) {
     line << " --images " << options.image_dir << " --image-pairs ";
     for (size_t i = 0; i < options.image_pairs.size(); ++i)
@@ -140,13 +141,13 @@ std::string QualityMarkdown(const QualityOptions& options, const QualityRun& run
      << ": " << run.clip_frames
      << " frames recorded through the real capture pipeline (render, crop, JPEG/PNG, clip "
         "directory) and read back"
-     << (options.skeleton_noise_m > 0
-             ? ", the recorded skeletons with Gaussian jitter of " +
-                   Fixed(options.skeleton_noise_m * 100, 1) +
-                   " cm per axis on every joint (the ground truth exact)"
-             : std::string())
-     << "; "
-     << EveryKth(options.frame_step) << " is reenacted at " << options.width << "x"
+     << (options.skeleton_noise_m > 0 ? ", the recorded skeletons with Gaussian jitter of " +
+                                            Fixed(options.skeleton_noise_m * 100, 1) +
+                                            " cm per axis on every joint (the ground truth exact)"
+                                      : std::string())
+     << (options.flat_lighting ? ", the subject lit flat (no shading) in recording and truth"
+                               : std::string())
+     << "; " << EveryKth(options.frame_step) << " is reenacted at " << options.width << "x"
      << options.height
      << " from viewpoints turned by view_deg about the subject's vertical axis from the "
         "sensor's position at frame 0, and compared with the scene rendered from the same camera "
