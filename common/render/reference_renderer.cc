@@ -56,6 +56,7 @@ void CheckPart(const ReferencePart& part, size_t index) {
                   name + "stored_from_viewer must be finite");
     REENACT_CHECK(std::isfinite(candidate.weight) && candidate.weight >= 0,
                   name + "candidate weights must be finite and >= 0");
+    REENACT_CHECK(candidate.stored_light.allFinite(), name + "stored_light must be finite");
     CheckCrop(*candidate.crop, name);
   }
 }
@@ -92,9 +93,10 @@ struct CandidateSample {
   double u = -1, v = -1;
 };
 
-// The rules of texturing.h for one candidate at the viewer-frame point p.
+// The rules of texturing.h for one candidate at the viewer-frame point p of unit normal n.
 CandidateSample SampleCandidate(const ReferenceCandidate& candidate, const Eigen::Vector3d& p,
-                                int part_label, bool test_visibility, double depth_tolerance_m) {
+                                const Eigen::Vector3d& n, int part_label, bool test_visibility,
+                                const ReferenceRenderOptions& options) {
   CandidateSample out;
   const ReferenceCrop& crop = *candidate.crop;
   const Eigen::Vector4d ps = candidate.stored_from_viewer * p.homogeneous();
@@ -105,6 +107,7 @@ CandidateSample SampleCandidate(const ReferenceCandidate& candidate, const Eigen
   const int w = crop.color.width, h = crop.color.height;
   if (!(u >= -0.5 && u <= w - 0.5 && v >= -0.5 && v <= h - 0.5)) return out;
   if (!SampleCrop(crop, u, v, out.rgb)) return out;
+  out.rgb *= SubjectShade(n, options.subject_light) / SubjectShade(n, candidate.stored_light);
   out.usable = true;
   out.u = u;
   out.v = v;
@@ -114,7 +117,7 @@ CandidateSample SampleCandidate(const ReferenceCandidate& candidate, const Eigen
   if (crop.part_labels.at(x, y) != part_label) return out;
   if (!crop.depth_m.empty()) {
     const double d = crop.depth_m.at(x, y);
-    if (d > 0 && !(std::abs(d - q.z()) <= depth_tolerance_m)) return out;
+    if (d > 0 && !(std::abs(d - q.z()) <= options.depth_tolerance_m)) return out;
   }
   out.visible = true;
   return out;
@@ -126,7 +129,8 @@ struct Contributor {
 };
 
 // The colour of a fragment under the part's mode; false where no candidate colours it.
-bool ShadeTextured(const ReferencePart& part, const Eigen::Vector3d& p, double depth_tolerance_m,
+bool ShadeTextured(const ReferencePart& part, const Eigen::Vector3d& p,
+                   const Eigen::Vector3d& normal, const ReferenceRenderOptions& options,
                    Eigen::Vector3d& rgb, std::array<CandidateSample, kMaxTextureCandidates>& s,
                    std::array<Contributor, kMaxTextureCandidates>& contributors, int& count) {
   count = 0;
@@ -134,7 +138,7 @@ bool ShadeTextured(const ReferencePart& part, const Eigen::Vector3d& p, double d
   const int n = visibility ? static_cast<int>(part.candidates.size()) : 1;
   const int label = PartLabel(part.part);
   for (int i = 0; i < n; ++i)
-    s[i] = SampleCandidate(part.candidates[i], p, label, visibility, depth_tolerance_m);
+    s[i] = SampleCandidate(part.candidates[i], p, normal, label, visibility, options);
   if (part.texturing == TexturingMode::kBlendVisible) {
     double total = 0;
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -173,6 +177,7 @@ void ReferenceRenderOptions::Check() const {
                 "clear_color must lie in [0, 255]");
   REENACT_CHECK(std::isfinite(depth_tolerance_m) && depth_tolerance_m >= 0,
                 "depth_tolerance_m must be finite and >= 0");
+  REENACT_CHECK(subject_light.allFinite(), "subject_light must be finite");
 }
 
 ReferenceRender RenderReference(const PinholeCamera& camera, std::span<const ReferencePart> parts,
@@ -230,12 +235,11 @@ ReferenceRender RenderReference(const PinholeCamera& camera, std::span<const Ref
       std::array<CandidateSample, kMaxTextureCandidates> samples;
       std::array<Contributor, kMaxTextureCandidates> contributors;
       int count = 0;
+      const Eigen::Vector3d n =
+          Eigen::Vector3d(f.attributes[0], f.attributes[1], f.attributes[2]).normalized();
       if (!part.candidates.empty()) {
-        if (!ShadeTextured(part, p, options.depth_tolerance_m, rgb, samples, contributors, count))
-          return false;
+        if (!ShadeTextured(part, p, n, options, rgb, samples, contributors, count)) return false;
       } else {
-        const Eigen::Vector3d n =
-            Eigen::Vector3d(f.attributes[0], f.attributes[1], f.attributes[2]).normalized();
         const double lambert = std::abs(n.dot(-p.normalized()));
         rgb = 255.0 * (0.35 + 0.65 * lambert) * part.color.cast<double>();
       }

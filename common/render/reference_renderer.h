@@ -22,8 +22,9 @@
 //     sample divided by its alpha. A candidate is unusable when z <= 0 (behind the stored
 //     camera), when (u, v) lies outside [-0.5, width - 0.5] x [-0.5, height - 0.5] (outside
 //     the crop), or when the sampled alpha is below 0.5 (off the stored subject).
-//   - Candidates, visibility and the texturing modes: common/render/texturing.h. A fragment
-//     that no candidate colours is discarded.
+//   - Candidates, visibility, relighting and the texturing modes: common/render/texturing.h
+//     (the normal n of relighting is the interpolated vertex normal below, normalised). A
+//     fragment that no candidate colours is discarded.
 //   - Untextured parts (no crop) show their flat colour with the GL renderer's two-sided
 //     Lambert shading, colour * (0.35 + 0.65 |n . e|), n the interpolated vertex normal
 //     (cylinder_mesh.h's rule: ShapedUnitNormal through NormalFromUnitCylinder), normalised,
@@ -47,6 +48,7 @@
 #include "common/render/cylinder_mesh.h"
 #include "common/render/texturing.h"
 #include "common/skeleton/skeleton.h"
+#include "common/texture/subject_light.h"
 
 namespace reenact {
 
@@ -75,6 +77,9 @@ struct ReferenceCandidate {
   // Eq. 16; a similarity from StoredFromViewerMapping); finite.
   Eigen::Matrix4d stored_from_viewer = Eigen::Matrix4d::Identity();
   double weight = 1;  // finite, >= 0; used by kBlendVisible
+  // The subject light as this stored frame saw it, viewer frame (relighting, texturing.h);
+  // finite.
+  Eigen::Vector3d stored_light = Eigen::Vector3d::Zero();
 };
 
 // One body-part cylinder to draw.
@@ -101,6 +106,8 @@ struct ReferenceRenderOptions {
   Eigen::Vector3i clear_color = Eigen::Vector3i::Zero();
   // Visibility test (b) of texturing.h, metres; finite, >= 0.
   double depth_tolerance_m = kDefaultDepthToleranceM;
+  // The subject light as the viewer sees it, viewer frame (relighting, texturing.h); finite.
+  Eigen::Vector3d subject_light = Eigen::Vector3d::Zero();
 
   // Throws CheckError when a field is out of range.
   void Check() const;
@@ -130,10 +137,10 @@ struct ReferenceRender {
 // part): camera passes Check(); options pass Check(); every part has a finite axis, a finite
 // positive radius, finite shape values > 0, a finite width direction if any, at most
 // kMaxTextureCandidates candidates, each with a crop, stored_frame >= 0, a finite
-// stored_from_viewer and a finite weight >= 0, and every crop 3-channel non-empty colour, a
-// 1-channel mask of the same size, a camera that passes Check() and has the crop's size, and
-// part labels and depth each empty or 1-channel of the crop's size. An empty part list renders
-// an all-clear image with an empty mask.
+// stored_from_viewer, a finite weight >= 0 and a finite stored_light, and every crop 3-channel
+// non-empty colour, a 1-channel mask of the same size, a camera that passes Check() and has the
+// crop's size, and part labels and depth each empty or 1-channel of the crop's size. An empty part
+// list renders an all-clear image with an empty mask.
 ReferenceRender RenderReference(const PinholeCamera& camera, std::span<const ReferencePart> parts,
                                 const ReferenceRenderOptions& options = {});
 

@@ -25,6 +25,13 @@
 //     renormalised over them); where that sum of weights is 0 (none visible, or all their
 //     weights 0), as kFirstVisible.
 // A cylinder with no candidate is drawn in its flat colour.
+// Relighting (common/texture/subject_light.h): each candidate's colour c_i is taken as
+//   c_i * SubjectShade(n, light) / SubjectShade(n, stored_light_i)
+// before any mode uses it, n the unit surface normal at p* (viewer frame), light the subject
+// light as the viewer sees it now and stored_light_i the same light as candidate i's stored
+// frame saw it, both in the viewer frame (stored_light_i = R_i^T L_i, R_i the rotation of
+// stored_from_viewer_i and L_i the light in that stored sensor frame). Both zero (the
+// default): the factor is exactly 1.
 
 namespace reenact {
 

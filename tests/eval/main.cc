@@ -60,6 +60,7 @@ int Quality(const CommandLine& cl) {
   if (!run.ok()) return Fail(run.error());
 
   const Status printed = eval::QualityReport(*run).Print(command->json_path);
+  std::cout << eval::SubjectLightLine(*run) << "\n";
   for (const std::string& rule : eval::QualityRules()) std::cout << rule << "\n";
   for (const eval::QualityImage& image : run->images) std::cout << "wrote " << image.path << "\n";
   if (!printed.ok()) return Fail(printed.error());

@@ -14,6 +14,7 @@
 
 #include "capture-client/record/clip_recorder.h"
 #include "capture-client/source/synthetic_source.h"
+#include "capture-client/synthetic/room.h"
 #include "common/error/check.h"
 #include "common/estimate/median.h"
 #include "proto/clip/clip_directory.h"
@@ -206,7 +207,7 @@ Expected<FrameEvaluation> QualityHarness::Evaluate(const QualityMethod& method, 
       viewer::ReferencePartsOf(e.frame.draw, [&s](int texture) {
         return viewer::ReferenceTexture{&s.crops.at(texture), s.frame_of_texture.at(texture)};
       });
-  e.reference = RenderReference(s.camera, parts);
+  e.reference = RenderReference(s.camera, parts, viewer::ReferenceOptionsOf(e.frame.draw));
   e.provenance = MeasurePartProvenance(e.reference, e.frame.cylinder_parts,
                                        [&s](int n) { return s.LabelsFor(n); });
   e.reference_iou = SilhouetteIou(e.rendered.subject_mask, e.reference.mask);
@@ -231,6 +232,10 @@ Expected<QualityRun> RunQuality(const QualityOptions& options) {
   QualityRun run;
   run.clip_frames = harness->clip().frame_count();
   run.gl_renderer = harness->gl_renderer();
+  run.subject_light = harness->clip().subject_light();
+  if (!options.flat_lighting)
+    run.true_subject_light =
+        capture::SceneLightDirection() * ((1 - capture::kSceneAmbient) / capture::kSceneAmbient);
   std::vector<ImagePair> pairs = options.image_pairs;
   if (pairs.empty()) {
     const int step = options.frame_step;

@@ -107,6 +107,11 @@ struct QualityRun {
   std::vector<QualityImage> images;
   int clip_frames = 0;      // frames captured
   std::string gl_renderer;  // GL_RENDERER of the headless context
+  // The clip's subject light as fitted at load (viewer::Reenactment::subject_light()) and the
+  // scene's true one in the same form (common/texture/subject_light.h: world frame, strength
+  // relative to the ambient light; zero when the subject is lit flat).
+  SubjectLightFit subject_light;
+  Eigen::Vector3d true_subject_light = Eigen::Vector3d::Zero();
 };
 
 // Everything about one compared frame.

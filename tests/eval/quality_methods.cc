@@ -76,8 +76,13 @@ const std::vector<QualityMethod>& QualityMethods() {
              "fitted at load from the stored silhouettes of up to 25 frames "
              "(common/model/cross_section_fit.h)",
              false, Preset("profile")),
-      Method("all", "profile + steady motion: every step of issue 9 together", true,
-             Preset("profile")),
+      Method("relit",
+             "profile + relighting: each stored colour re-shaded from the normal it was recorded "
+             "at to the normal shown, under one directional light plus ambient fitted at load "
+             "from the colours and depth normals of up to 25 stored frames "
+             "(common/texture/subject_light.h)",
+             false, Preset("relit")),
+      Method("all", "relit + steady motion: every step of issue 9 together", true, Preset("relit")),
   };
   return methods;
 }

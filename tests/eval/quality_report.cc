@@ -1,5 +1,6 @@
 #include "tests/eval/quality_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -93,6 +94,23 @@ std::vector<std::string> QualityRules() {
   };
 }
 
+std::string SubjectLightLine(const QualityRun& run) {
+  const SubjectLightFit& fit = run.subject_light;
+  const double true_strength = run.true_subject_light.norm();
+  const std::string truth = true_strength > 0
+                                ? "the scene's light has strength " + Fixed(true_strength, 2)
+                                : "the subject is lit flat (strength 0)";
+  if (!fit.found) return "Subject light: none found at load (" + fit.reason + "); " + truth + ".";
+  std::string line = "Subject light fitted at load: strength " + Fixed(fit.light.norm(), 2);
+  if (true_strength > 0) {
+    const double cosine = fit.light.normalized().dot(run.true_subject_light.normalized());
+    line += ", " + Fixed(std::acos(std::clamp(cosine, -1.0, 1.0)) * 180 / M_PI, 1) +
+            " degrees from the scene's light";
+  }
+  return line + " (gain " + Fixed(fit.gain, 3) + " over " + std::to_string(fit.samples) +
+         " samples in " + std::to_string(fit.bins) + " surface bins); " + truth + ".";
+}
+
 std::string QualityCommandLine(const QualityOptions& options) {
   std::ostringstream line;
   line << "reenact-eval quality --scenario " << options.scenario;
@@ -168,6 +186,7 @@ std::string QualityMarkdown(const QualityOptions& options, const QualityRun& run
        << Fixed(r.ms_per_frame, 1) << " | " << Fixed(r.flicker, 2) << " | "
        << Fixed(r.reenacted_change, 2) << " | " << Fixed(r.truth_change, 2) << " | "
        << Fixed(r.error_change, 2) << " |\n";
+  md << "\n" << SubjectLightLine(run) << "\n";
   md << "\nHow the figures are made:\n\n";
   for (const std::string& rule : QualityRules()) md << "- " << rule << "\n";
 

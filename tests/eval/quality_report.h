@@ -19,6 +19,10 @@ proto::Report QualityReport(const QualityRun& run);
 // timing), printed under the table and written into the markdown.
 std::vector<std::string> QualityRules();
 
+// One sentence on the fitted subject light against the scene's: strength, the angle between
+// them, the fit's gain; or why none was found.
+std::string SubjectLightLine(const QualityRun& run);
+
 // The reenact-eval command line that reproduces the options' figures.
 std::string QualityCommandLine(const QualityOptions& options);
 

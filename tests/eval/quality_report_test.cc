@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <limits>
 
@@ -26,6 +27,28 @@ TEST(QualityReport, JsonRowsCarryTheDesignFieldNames) {
   for (const char* field : {"\"method\"", "\"scenario\"", "\"view_deg\"", "\"n\"", "\"psnr_db\"",
                             "\"ssim\"", "\"iou\"", "\"wrong_part_rate\"", "\"ms_per_frame\""})
     EXPECT_NE(json.find(field), std::string::npos) << field;
+}
+
+TEST(QualityReport, SubjectLightLineComparesTheFitWithTheScenesLight) {
+  QualityRun run;
+  run.true_subject_light = Eigen::Vector3d(0, 0, 2);
+  run.subject_light.found = true;
+  run.subject_light.light = 1.5 * Eigen::Vector3d(std::sin(0.5), 0, std::cos(0.5));  // 28.6 deg
+  run.subject_light.gain = 0.4567;
+  run.subject_light.samples = 1234;
+  run.subject_light.bins = 56;
+  const std::string line = SubjectLightLine(run);
+  EXPECT_NE(line.find("strength 1.50, 28.6 degrees from the scene's light (gain 0.457 over 1234 "
+                      "samples in 56 surface bins); the scene's light has strength 2.00"),
+            std::string::npos)
+      << line;
+
+  run.true_subject_light = Eigen::Vector3d::Zero();
+  run.subject_light = {};
+  run.subject_light.reason = "REASON";
+  const std::string none = SubjectLightLine(run);
+  EXPECT_NE(none.find("none found at load (REASON); the subject is lit flat"), std::string::npos)
+      << none;
 }
 
 TEST(QualityReport, MarkdownHasTheTableTheRulesAndTheCommand) {

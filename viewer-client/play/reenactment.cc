@@ -127,6 +127,20 @@ Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFr
           manifest_.radius_ratio, part_extensions_, {.depth_scale_m = manifest_.depth_scale_m})
           .shape;
 
+  std::vector<LightSample> light_samples;
+  for (int n : ShapeFitFrames(manifest_.representative_frame, usable, 24)) {
+    const StoredTexture t = Texture(n, BodyShape::kProfiled);
+    if (t.depth_m.empty()) continue;
+    AppendLightSamples({.skeleton_in_sensor = &skeletons_in_sensor_[n],
+                        .camera = &t.camera,
+                        .color = &t.color,
+                        .part_labels = &t.part_labels,
+                        .depth_m = &t.depth_m,
+                        .world_from_sensor = frames_[n].world_from_sensor.linear()},
+                       {}, &light_samples);
+  }
+  subject_light_ = FitSubjectLight(light_samples);
+
   std::vector<Skeleton> in_world;
   std::vector<double> times;
   std::unique_ptr<bool[]> flagged = std::make_unique<bool[]>(frames_.size());
@@ -211,6 +225,8 @@ ReenactedFrame Reenactment::BuildPosed(int k, const Skeleton& skeleton_in_world,
       for (auto& part : chosen) part.push_back({out.texture_frame, ranked.front().cost, 1.0});
   }
 
+  const bool relight = texturing.relight && subject_light_.found;
+  if (relight) out.draw.subject_light = viewer_from_world.linear() * subject_light_.light;
   const auto [extensions, shapes] = ShapeOf(texturing.shape);
   const auto cylinders = PoseCylinders(viewer_skeleton, manifest_.radius_ratio, extensions, shapes);
   for (int p = 0; p < kBodyPartCount; ++p) {
@@ -232,7 +248,16 @@ ReenactedFrame Reenactment::BuildPosed(int k, const Skeleton& skeleton_in_world,
       const auto m = StoredFromViewerMapping(draw.a, draw.b, stored->a, stored->b);
       if (!m) continue;
       const int texture = texture_for_frame(c.frame);
-      if (texture >= 0) draw.candidates.push_back({texture, *m, c.weight});
+      if (texture < 0) continue;
+      TextureCandidate candidate{texture, *m, c.weight};
+      if (relight) {
+        // stored_light = R^T L_stored, R the rotation of the similarity m (texturing.h).
+        const Eigen::Matrix3d sr = m->topLeftCorner<3, 3>();
+        const Eigen::Vector3d light_in_stored =
+            frames_[c.frame].world_from_sensor.linear().transpose() * subject_light_.light;
+        candidate.stored_light = sr.transpose() * light_in_stored / sr.col(0).norm();
+      }
+      draw.candidates.push_back(candidate);
     }
     out.draw.cylinders.push_back(draw);
     out.cylinder_parts.push_back(part);

@@ -9,9 +9,9 @@
 // still ranks the stored, unflagged skeletons.
 // Texturing (issue 9, TexturingOptions; default the thesis): the stored frames may be chosen
 // per body part (common/texture/part_selection.h) with a few ranked candidates per part,
-// drawn by the renderer's occlusion-aware or blending modes (common/render/texturing.h), and
+// drawn by the renderer's occlusion-aware or blending modes (common/render/texturing.h),
 // held across output frames by hysteresis (the caller keeps a PartSelectionHistory per
-// viewer stream).
+// viewer stream), and relit from their recorded pose to the shown one.
 
 #include <Eigen/Geometry>
 #include <functional>
@@ -22,6 +22,7 @@
 #include "common/model/cylinder_model.h"
 #include "common/render/texturing.h"
 #include "common/texture/part_selection.h"
+#include "common/texture/subject_light.h"
 #include "common/texture/texture_index.h"
 #include "proto/clip/frame_codec.h"
 #include "proto/clip/manifest.h"
@@ -63,6 +64,10 @@ struct TexturingOptions {
   double hysteresis = 0;
   double missing_joint_cost_m = 1.0;  // >= 0, as in Eq. 5
   BodyShape shape = BodyShape::kCylinders;
+  // Relighting (issue 9): each stored colour re-shaded from the pose it was recorded in to
+  // the pose shown, under the clip's fitted subject light (Reenactment::subject_light();
+  // common/texture/subject_light.h). No effect where no light was found.
+  bool relight = false;
 
   // Throws CheckError when a field is out of range or the combination is not supported.
   void Check() const;
@@ -109,6 +114,11 @@ class Reenactment {
   // over the clip (common/model/cross_section_fit.h); the shape BodyShape::kProfiled draws.
   const PartShapes& part_shapes() const { return part_shapes_; }
 
+  // The light on the subject (world frame), fitted at load from the colours, depth normals and
+  // profiled part labels of the representative frame and up to 24 other usable frames spread
+  // over the clip (common/texture/subject_light.h); TexturingOptions::relight uses it.
+  const SubjectLightFit& subject_light() const { return subject_light_; }
+
   // Draw list for output frame k seen by a viewer camera, with options().texturing.
   // texture_for_frame maps a stored frame index to the renderer's texture index (the caller
   // uploads Texture(n) on demand). history (per-part selection with hysteresis; may be null)
@@ -145,6 +155,7 @@ class Reenactment {
   std::vector<Skeleton> steady_in_world_;  // the steady track, world frame
   PartExtensions part_extensions_{};
   PartShapes part_shapes_{};
+  SubjectLightFit subject_light_{};
 
   // The extensions and cross-sections a shape draws with.
   std::pair<PartExtensions, PartShapes> ShapeOf(BodyShape shape) const;

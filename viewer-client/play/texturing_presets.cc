@@ -6,7 +6,7 @@
 namespace reenact::viewer {
 namespace {
 
-constexpr std::array<std::pair<std::string_view, TexturingOptions>, 6> kPresets = {{
+constexpr std::array<std::pair<std::string_view, TexturingOptions>, 7> kPresets = {{
     {"thesis", {}},
     {"per-part", {.selection = TextureSelection::kPerPart}},
     {"occlusion",
@@ -30,6 +30,13 @@ constexpr std::array<std::pair<std::string_view, TexturingOptions>, 6> kPresets 
       .candidates = kMaxTextureCandidates,
       .hysteresis = 0.1,
       .shape = BodyShape::kProfiled}},
+    {"relit",
+     {.selection = TextureSelection::kPerPart,
+      .mode = TexturingMode::kBlendVisible,
+      .candidates = kMaxTextureCandidates,
+      .hysteresis = 0.1,
+      .shape = BodyShape::kProfiled,
+      .relight = true}},
 }};
 
 }  // namespace

@@ -9,6 +9,8 @@
 //   shape      blend with the parts extended past their end joints (BodyShape::kExtended)
 //   profile    shape with radius rings along every part and an elliptic torso
 //              (BodyShape::kProfiled)
+//   relit      profile with every stored colour relit from its recorded pose to the shown one
+//              under the clip's fitted subject light (TexturingOptions::relight)
 
 #include <string>
 #include <string_view>

@@ -20,11 +20,18 @@ std::vector<ReferencePart> ReferencePartsOf(
       for (const TextureCandidate& t : c.candidates) {
         const ReferenceTexture source = texture(t.texture);
         part.candidates.push_back(
-            {source.crop, source.stored_frame, t.stored_from_viewer, t.weight});
+            {source.crop, source.stored_frame, t.stored_from_viewer, t.weight, t.stored_light});
       }
     parts.push_back(std::move(part));
   }
   return parts;
+}
+
+ReferenceRenderOptions ReferenceOptionsOf(const FrameDraw& frame) {
+  ReferenceRenderOptions options;
+  options.depth_tolerance_m = frame.depth_tolerance_m;
+  options.subject_light = frame.subject_light;
+  return options;
 }
 
 }  // namespace reenact::viewer

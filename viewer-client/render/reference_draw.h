@@ -27,4 +27,8 @@ struct ReferenceTexture {
 std::vector<ReferencePart> ReferencePartsOf(
     const FrameDraw& frame, const std::function<ReferenceTexture(int texture)>& texture);
 
+// The reference options that draw the frame's cylinders as the GL renderer does: its depth
+// tolerance and subject light, the rest default.
+ReferenceRenderOptions ReferenceOptionsOf(const FrameDraw& frame);
+
 }  // namespace reenact::viewer

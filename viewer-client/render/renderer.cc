@@ -43,7 +43,7 @@ struct Renderer::Impl {
     GlProgram program;
     GLint projection = -1, model = -1, normal = -1, ring_width = -1, ring_depth = -1,
           ring_width_slope = -1, ring_depth_slope = -1, textured = -1, color = -1, stored = -1,
-          intrinsics = -1, size = -1;
+          intrinsics = -1, size = -1, light = -1, stored_light = -1;
     GLint mode = -1, weight = -1, label = -1, depth_tolerance = -1;  // visible variants only
   };
   std::array<CylinderProgram, 1 + kMaxTextureCandidates> cylinder_programs;
@@ -134,6 +134,8 @@ Status Renderer::Impl::Initialize(int w, int h) {
     c.stored = UniformLocation(p, "u_stored_from_viewer");
     c.intrinsics = UniformLocation(p, "u_intrinsics");
     c.size = UniformLocation(p, "u_texture_size");
+    c.light = UniformLocation(p, "u_light");
+    c.stored_light = UniformLocation(p, "u_stored_light");
     if (visibility) {
       c.mode = UniformLocation(p, "u_mode");
       c.weight = UniformLocation(p, "u_weight");
@@ -284,6 +286,8 @@ void Renderer::Impl::DrawCylinders(const FrameDraw& frame,
     glUniformMatrix4fv(c.projection, 1, GL_FALSE, projection.data());
     if (c.depth_tolerance >= 0)
       glUniform1f(c.depth_tolerance, static_cast<float>(frame.depth_tolerance_m));
+    const Eigen::Vector3f light = frame.subject_light.cast<float>();
+    glUniform3f(c.light, light.x(), light.y(), light.z());
   }
   glEnable(GL_DEPTH_TEST);
   glDepthMask(GL_TRUE);
@@ -323,6 +327,7 @@ void Renderer::Impl::DrawCylinders(const FrameDraw& frame,
       std::array<float, 4 * kMaxTextureCandidates> intrinsics{};
       std::array<float, 2 * kMaxTextureCandidates> size{};
       std::array<float, kMaxTextureCandidates> weight{};
+      std::array<float, 3 * kMaxTextureCandidates> stored_light{};
       for (int i = 0; i < count; ++i) {
         const TextureCandidate& candidate = c.candidates[static_cast<size_t>(i)];
         const UploadedTexture& t = textures[static_cast<size_t>(candidate.texture)];
@@ -334,6 +339,8 @@ void Renderer::Impl::DrawCylinders(const FrameDraw& frame,
         size[2 * i] = static_cast<float>(t.width);
         size[2 * i + 1] = static_cast<float>(t.height);
         weight[i] = static_cast<float>(candidate.weight);
+        for (int k = 0; k < 3; ++k)
+          stored_light[3 * i + k] = static_cast<float>(candidate.stored_light[k]);
         glActiveTexture(GL_TEXTURE0 + i);
         glBindTexture(GL_TEXTURE_2D, t.texture.id());
         if (visibility) {
@@ -344,6 +351,7 @@ void Renderer::Impl::DrawCylinders(const FrameDraw& frame,
       glUniformMatrix4fv(program.stored, count, GL_FALSE, stored.data());
       glUniform4fv(program.intrinsics, count, intrinsics.data());
       glUniform2fv(program.size, count, size.data());
+      glUniform3fv(program.stored_light, count, stored_light.data());
       if (visibility) {
         glUniform1i(program.mode, static_cast<int>(c.texturing));
         glUniform1f(program.label, static_cast<float>(PartLabel(c.part)));
@@ -494,12 +502,14 @@ void Renderer::Draw(const FrameDraw& frame) {
       REENACT_CHECK(t.stored_from_viewer.allFinite(), "stored_from_viewer must be finite");
       REENACT_CHECK(std::isfinite(t.weight) && t.weight >= 0,
                     "candidate weights must be finite and >= 0");
+      REENACT_CHECK(t.stored_light.allFinite(), "candidate stored_light must be finite");
       REENACT_CHECK(t.texture >= 0 && t.texture < static_cast<int>(impl_->textures.size()),
                     "cylinder texture index " + std::to_string(t.texture) + " was never uploaded");
     }
   }
   REENACT_CHECK(std::isfinite(frame.depth_tolerance_m) && frame.depth_tolerance_m >= 0,
                 "depth_tolerance_m must be finite and >= 0");
+  REENACT_CHECK(frame.subject_light.allFinite(), "subject_light must be finite");
   for (const auto& [p, q] : frame.bones) {
     REENACT_CHECK(p.allFinite() && q.allFinite(), "bone end points must be finite");
   }

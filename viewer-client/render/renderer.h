@@ -53,6 +53,9 @@ struct TextureCandidate {
   // frame (thesis Eq. 16, p_n = Q Omega p*); bottom row (0, 0, 0, 1).
   Eigen::Matrix4d stored_from_viewer = Eigen::Matrix4d::Identity();
   double weight = 1;  // >= 0; used by TexturingMode::kBlendVisible
+  // The subject light as this stored frame saw it, in the viewer frame (relighting,
+  // common/render/texturing.h); finite. Zero with FrameDraw::subject_light zero: no relighting.
+  Eigen::Vector3d stored_light = Eigen::Vector3d::Zero();
 };
 
 // One body-part cylinder to draw.
@@ -92,6 +95,9 @@ struct FrameDraw {
   bool textured = true;                    // false: bare cylinders in flat colours
   // Visibility test (b) of common/render/texturing.h, metres; finite, >= 0.
   double depth_tolerance_m = kDefaultDepthToleranceM;
+  // The subject light as the viewer sees it now, viewer frame (relighting,
+  // common/render/texturing.h); finite.
+  Eigen::Vector3d subject_light = Eigen::Vector3d::Zero();
   // Skeleton overlay line segments (viewer frame), drawn on top with joint dots.
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> bones;
   Eigen::Vector3f bone_color{1.0f, 0.85f, 0.1f};
@@ -133,7 +139,8 @@ class Renderer {
   RenderedFrame Render(const FrameDraw& frame);
   // Draws into the offscreen framebuffer (resized to the camera if needed). Preconditions
   // (CHECK): camera passes Check(); at most kMaxTextureCandidates candidates per cylinder,
-  // their texture indices uploaded, matrices finite and weights finite and >= 0; radii > 0,
+  // their texture indices uploaded, matrices, stored lights and weights finite, weights >= 0,
+  // subject_light finite; radii > 0,
   // shape values finite and > 0, width directions and every point finite; depth_tolerance_m
   // finite and >= 0; background, if set, is RGB with the camera's size. A cylinder whose end
   // points coincide draws nothing.

@@ -46,6 +46,8 @@ uniform vec3 u_color;
 uniform mat4 u_stored_from_viewer[CANDIDATES];
 uniform vec4 u_intrinsics[CANDIDATES];
 uniform vec2 u_texture_size[CANDIDATES];
+uniform vec3 u_light;
+uniform vec3 u_stored_light[CANDIDATES];
 uniform sampler2D u_texture0;
 #if VISIBILITY
 uniform int u_mode;
@@ -64,6 +66,9 @@ uniform sampler2D u_visibility2;
 #endif
 layout(location = 0) out vec4 out_color;
 
+// common/texture/subject_light.h's SubjectShade.
+float Shade(vec3 n, vec3 light) { return 1.0 + max(0.0, dot(n, light)); }
+
 // 0: unusable, 1: usable, 2: usable and visible.
 #if VISIBILITY
 int Candidate(int i, sampler2D tex, sampler2D vis, out vec3 rgb) {
@@ -80,7 +85,8 @@ int Candidate(int i, sampler2D tex, out vec3 rgb) {
   if (any(lessThan(tc, vec2(0.0))) || any(greaterThan(tc, vec2(1.0)))) return 0;
   vec4 texel = texture(tex, tc);
   if (texel.a < 0.5) return 0;
-  rgb = texel.rgb / texel.a;
+  vec3 n = normalize(v_normal);
+  rgb = texel.rgb / texel.a * (Shade(n, u_light) / Shade(n, u_stored_light[i]));
 #if VISIBILITY
   ivec2 size = ivec2(u_texture_size[i]);
   ivec2 nearest = clamp(ivec2(floor(uv + 0.5)), ivec2(0), size - 1);

@@ -25,7 +25,12 @@ TEST(TexturingPresets, EachAddsOneStepAndAllPassCheck) {
   const TexturingOptions profile = TexturingPreset("profile").value();
   EXPECT_EQ(profile.shape, BodyShape::kProfiled);
   EXPECT_EQ(profile.mode, TexturingMode::kBlendVisible);
-  for (const TexturingOptions& o : {thesis, per_part, occlusion, blend, shape, profile})
+  EXPECT_FALSE(profile.relight);
+  const TexturingOptions relit = TexturingPreset("relit").value();
+  EXPECT_EQ(relit.shape, BodyShape::kProfiled);
+  EXPECT_EQ(relit.mode, TexturingMode::kBlendVisible);
+  EXPECT_TRUE(relit.relight);
+  for (const TexturingOptions& o : {thesis, per_part, occlusion, blend, shape, profile, relit})
     EXPECT_NO_THROW(o.Check());
 }
 
@@ -33,7 +38,7 @@ TEST(TexturingPresets, UnknownNameIsAUsageErrorListingTheKnownOnes) {
   const auto r = TexturingPreset("Blend");
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().code, "usage");
-  EXPECT_NE(r.error().message.find("thesis, per-part, occlusion, blend, shape, profile"),
+  EXPECT_NE(r.error().message.find("thesis, per-part, occlusion, blend, shape, profile, relit"),
             std::string::npos);
 }
 
