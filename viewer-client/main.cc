@@ -32,7 +32,8 @@ constexpr const char* kUsage =
     "              synthetic:SCENARIO[?frames=N&max_deg=D&subject=0|1&seed=S]\n"
     "      without --headless: the AR view in a window (space, arrows, +/-, s, c, t, q)\n"
     "  --steady: steady motion (flagged skeletons interpolated across, joints One Euro filtered)\n"
-    "  --texturing NAME: thesis | per-part | occlusion | blend | shape | profile (default)\n"
+    "  --texturing NAME: thesis | per-part | occlusion | blend | shape | profile | relit\n"
+    "      (default relit)\n"
     "      (viewer-client/play/texturing_presets.h; docs/quality.md compares them)\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-viewer", e); }
