@@ -33,6 +33,13 @@ void CheckCrop(const ReferenceCrop& crop, const std::string& name) {
                 name + "crop part labels must be empty or single-channel of the crop's size");
   REENACT_CHECK(empty_or_crop_sized(crop.depth_m),
                 name + "crop depth must be empty or single-channel of the crop's size");
+  REENACT_CHECK(crop.normals.empty() ||
+                    (crop.normals.channels == 3 && crop.normals.width == crop.color.width &&
+                     crop.normals.height == crop.color.height),
+                name + "crop normals must be empty or 3-channel of the crop's size");
+  REENACT_CHECK(std::all_of(crop.normals.data.begin(), crop.normals.data.end(),
+                            [](float v) { return std::isfinite(v); }),
+                name + "crop normals must be finite");
 }
 
 void CheckPart(const ReferencePart& part, size_t index) {
@@ -107,13 +114,24 @@ CandidateSample SampleCandidate(const ReferenceCandidate& candidate, const Eigen
   const int w = crop.color.width, h = crop.color.height;
   if (!(u >= -0.5 && u <= w - 0.5 && v >= -0.5 && v <= h - 0.5)) return out;
   if (!SampleCrop(crop, u, v, out.rgb)) return out;
-  out.rgb *= SubjectShade(n, options.subject_light) / SubjectShade(n, candidate.stored_light);
+  const int x = std::clamp(static_cast<int>(std::floor(u + 0.5)), 0, w - 1);
+  const int y = std::clamp(static_cast<int>(std::floor(v + 0.5)), 0, h - 1);
+  if (!options.subject_light.isZero(0)) {
+    Eigen::Vector3d normal = n;
+    if (!crop.normals.empty()) {
+      const Eigen::Vector3d stored(crop.normals.at(x, y, 0), crop.normals.at(x, y, 1),
+                                   crop.normals.at(x, y, 2));
+      if (!stored.isZero(0))
+        normal =
+            (candidate.stored_from_viewer.topLeftCorner<3, 3>().transpose() * stored).normalized();
+    }
+    out.rgb *=
+        SubjectShade(normal, options.subject_light) / SubjectShade(normal, candidate.stored_light);
+  }
   out.usable = true;
   out.u = u;
   out.v = v;
   if (!test_visibility || crop.part_labels.empty()) return out;
-  const int x = std::clamp(static_cast<int>(std::floor(u + 0.5)), 0, w - 1);
-  const int y = std::clamp(static_cast<int>(std::floor(v + 0.5)), 0, h - 1);
   if (crop.part_labels.at(x, y) != part_label) return out;
   if (!crop.depth_m.empty()) {
     const double d = crop.depth_m.at(x, y);

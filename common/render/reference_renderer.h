@@ -64,6 +64,9 @@ struct ReferenceCrop {
   // no point of this crop counts as visible; empty depth: test (b) always passes.
   ImageLabel8 part_labels;
   Image<float> depth_m;
+  // Relighting (texturing.h): the stored surface's normals (crop camera frame, unit, zero where
+  // unknown; DepthNormalMap), empty or of the crop's size, channels 3, finite.
+  Image<float> normals;
 };
 
 // One texture candidate of a part (texturing.h).

@@ -25,13 +25,17 @@
 //     renormalised over them); where that sum of weights is 0 (none visible, or all their
 //     weights 0), as kFirstVisible.
 // A cylinder with no candidate is drawn in its flat colour.
-// Relighting (common/texture/subject_light.h): each candidate's colour c_i is taken as
-//   c_i * SubjectShade(n, light) / SubjectShade(n, stored_light_i)
-// before any mode uses it, n the unit surface normal at p* (viewer frame), light the subject
-// light as the viewer sees it now and stored_light_i the same light as candidate i's stored
-// frame saw it, both in the viewer frame (stored_light_i = R_i^T L_i, R_i the rotation of
-// stored_from_viewer_i and L_i the light in that stored sensor frame). Both zero (the
-// default): the factor is exactly 1.
+// Relighting (common/texture/subject_light.h), where the frame's light is not zero: each
+// usable candidate's colour c_i is taken as
+//   c_i * SubjectShade(n_i, light) / SubjectShade(n_i, stored_light_i)
+// before any mode uses it, with light the subject light as the viewer sees it now and
+// stored_light_i the same light as candidate i's stored frame saw it, both in the viewer frame
+// (stored_light_i = R_i^T L_i, R_i the rotation of stored_from_viewer_i and L_i the light in
+// that stored sensor frame). n_i is the stored surface's own normal carried to the viewer with
+// the texture, R_i^T n_s, n_s the crop's normal map at the nearest texel (x, y) above where it
+// is not zero (common/texture/subject_light.h DepthNormalMap); else n, the unit surface
+// normal of the drawn model at p* (viewer frame). A zero light (the default) leaves every
+// colour as it is.
 
 namespace reenact {
 

@@ -409,6 +409,56 @@ void LightSampleOptions::Check() const {
   bins.Check();
 }
 
+std::optional<Eigen::Vector3d> DepthNormal(const Image<float>& depth_m,
+                                           const ImageLabel8& part_labels,
+                                           const PinholeCamera& camera, int x, int y,
+                                           const LightSampleOptions& options) {
+  if (!part_labels.Contains(x, y)) return std::nullopt;
+  const int label = part_labels.at(x, y);
+  if (label < 1 || label > kBodyPartCount) return std::nullopt;
+  const double z = depth_m.at(x, y);
+  if (!(z > 0) || !std::isfinite(z)) return std::nullopt;
+  const int k = options.normal_step;
+  const double max_jump = options.max_depth_jump_m * k;
+  // The neighbour's depth, or 0 when it cannot take part in the normal.
+  const auto neighbour_depth = [&](int xn, int yn) -> double {
+    if (!part_labels.Contains(xn, yn) || part_labels.at(xn, yn) != label) return 0;
+    const double zn = depth_m.at(xn, yn);
+    if (!(zn > 0) || !std::isfinite(zn) || !(std::abs(zn - z) <= max_jump)) return 0;
+    return zn;
+  };
+  const double z_left = neighbour_depth(x - k, y), z_right = neighbour_depth(x + k, y);
+  const double z_up = neighbour_depth(x, y - k), z_down = neighbour_depth(x, y + k);
+  if (z_left == 0 || z_right == 0 || z_up == 0 || z_down == 0) return std::nullopt;
+  const Eigen::Vector3d along_x = camera.Unproject(Eigen::Vector2d(x + k, y), z_right) -
+                                  camera.Unproject(Eigen::Vector2d(x - k, y), z_left);
+  const Eigen::Vector3d along_y = camera.Unproject(Eigen::Vector2d(x, y + k), z_down) -
+                                  camera.Unproject(Eigen::Vector2d(x, y - k), z_up);
+  Eigen::Vector3d normal = along_x.cross(along_y);
+  const double length = normal.norm();
+  if (!(length > 0) || !std::isfinite(length)) return std::nullopt;
+  normal /= length;
+  if (normal.dot(camera.Unproject(Eigen::Vector2d(x, y), z)) > 0) normal = -normal;
+  return normal;
+}
+
+Image<float> DepthNormalMap(const Image<float>& depth_m, const ImageLabel8& part_labels,
+                            const PinholeCamera& camera, const LightSampleOptions& options) {
+  options.Check();
+  camera.Check();
+  const auto sized = [&](const auto& image) {
+    return image.channels == 1 && image.width == camera.width && image.height == camera.height;
+  };
+  REENACT_CHECK(sized(depth_m) && sized(part_labels),
+                "DepthNormalMap: depth and part labels must be 1-channel of the camera's size");
+  Image<float> normals(camera.width, camera.height, 3, 0.0f);
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x)
+      if (const auto n = DepthNormal(depth_m, part_labels, camera, x, y, options))
+        for (int k = 0; k < 3; ++k) normals.at(x, y, k) = static_cast<float>((*n)[k]);
+  return normals;
+}
+
 void AppendLightSamples(const LightSampleFrame& frame, const LightSampleOptions& options,
                         std::vector<LightSample>* samples) {
   options.Check();
@@ -441,43 +491,20 @@ void AppendLightSamples(const LightSampleFrame& frame, const LightSampleOptions&
     part_frames[p] =
         BinFrameOf(*frame.skeleton_in_sensor, static_cast<BodyPart>(p), options.bins.min_sine);
 
-  const int k = options.normal_step;
-  const double max_jump = options.max_depth_jump_m * k;
-  // The neighbour's depth, or 0 when it cannot take part in the normal.
-  const auto neighbour_depth = [&](int x, int y, int label, double z) -> double {
-    if (!labels.Contains(x, y) || labels.at(x, y) != label) return 0;
-    const double zn = depth.at(x, y);
-    if (!(zn > 0) || !std::isfinite(zn) || !(std::abs(zn - z) <= max_jump)) return 0;
-    return zn;
-  };
   for (int y = 0; y < camera.height; y += options.stride)
     for (int x = 0; x < camera.width; x += options.stride) {
       const int label = labels.at(x, y);
       if (label < 1 || label > kBodyPartCount) continue;
       const BodyPart part = static_cast<BodyPart>(label - 1);
       if (!part_frames[label - 1]) continue;
-      const double z = depth.at(x, y);
-      if (!(z > 0) || !std::isfinite(z)) continue;
       const int r = color.at(x, y, 0), g = color.at(x, y, 1), b = color.at(x, y, 2);
       if (r > options.max_value || g > options.max_value || b > options.max_value) continue;
-      const double z_left = neighbour_depth(x - k, y, label, z);
-      const double z_right = neighbour_depth(x + k, y, label, z);
-      const double z_up = neighbour_depth(x, y - k, label, z);
-      const double z_down = neighbour_depth(x, y + k, label, z);
-      if (z_left == 0 || z_right == 0 || z_up == 0 || z_down == 0) continue;
-      const Eigen::Vector3d point = camera.Unproject(Eigen::Vector2d(x, y), z);
-      const Eigen::Vector3d along_x = camera.Unproject(Eigen::Vector2d(x + k, y), z_right) -
-                                      camera.Unproject(Eigen::Vector2d(x - k, y), z_left);
-      const Eigen::Vector3d along_y = camera.Unproject(Eigen::Vector2d(x, y + k), z_down) -
-                                      camera.Unproject(Eigen::Vector2d(x, y - k), z_up);
-      Eigen::Vector3d normal = along_x.cross(along_y);
-      const double length = normal.norm();
-      if (!(length > 0) || !std::isfinite(length)) continue;
-      normal /= length;
-      if (normal.dot(point) > 0) normal = -normal;  // towards the camera centre
+      const auto normal = DepthNormal(depth, labels, camera, x, y, options);
+      if (!normal) continue;
+      const Eigen::Vector3d point = camera.Unproject(Eigen::Vector2d(x, y), depth.at(x, y));
       const int bin = BinIn(*part_frames[label - 1], part, point, options.bins);
       if (bin < 0) continue;
-      samples->push_back({bin, world_from_sensor * normal, (r + g + b) / 3.0});
+      samples->push_back({bin, world_from_sensor * *normal, (r + g + b) / 3.0});
     }
 }
 

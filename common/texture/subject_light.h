@@ -32,6 +32,7 @@
 // is well determined and the vertical part only by the surfaces that face up or down.
 
 #include <Eigen/Core>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -125,13 +126,27 @@ struct LightSampleOptions {
   void Check() const;
 };
 
+// The surface normal at pixel (x, y) of a stored frame (sensor frame, unit, turned towards the
+// camera): the cross product of the back-projected central differences normal_step pixels to
+// each side in x and y. nullopt unless the pixel is labelled with a part (1..kBodyPartCount)
+// and has a depth reading, and all four neighbours lie in the image, carry the same label and
+// a reading within max_depth_jump_m * normal_step of the centre's depth.
+std::optional<Eigen::Vector3d> DepthNormal(const Image<float>& depth_m,
+                                           const ImageLabel8& part_labels,
+                                           const PinholeCamera& camera, int x, int y,
+                                           const LightSampleOptions& options);
+
+// DepthNormal at every pixel (3 channels, sensor frame), (0, 0, 0) where there is none: the
+// stored surface's own normals, which relighting carries to the viewer with the texture
+// (common/render/texturing.h). Preconditions (CHECK): options and camera pass Check(), depth
+// and labels 1 channel of the camera's size.
+Image<float> DepthNormalMap(const Image<float>& depth_m, const ImageLabel8& part_labels,
+                            const PinholeCamera& camera, const LightSampleOptions& options = {});
+
 // Appends the frame's samples, in row-major pixel order: pixels on the stride grid (x and y
 // multiples of stride) labelled with a part (labels outside 1..kBodyPartCount count as none),
-// with a depth reading, none of R, G, B above max_value, and a depth normal: the cross product
-// of the back-projected (PinholeCamera::Unproject, distortion included) central differences
-// normal_step pixels to each side in x and y (all four neighbours with a reading, labelled with
-// the same part, and within max_depth_jump_m * normal_step of the centre's depth), oriented
-// towards the camera, rotated to the world. The value is (R + G + B) / 3. The bin is
+// none of R, G, B above max_value, and with a DepthNormal (PinholeCamera::Unproject,
+// distortion included), rotated to the world. The value is (R + G + B) / 3. The bin is
 // LightSampleBin of the back-projected point; pixels without a bin are skipped.
 // Preconditions (CHECK): options pass Check(); pointers (samples too) not null; camera passes
 // Check(); colour 3 channels and labels and depth 1 channel of the camera's size;

@@ -81,7 +81,7 @@ void AddRenderRows(proto::Report& report, const CoreBenchOptions& options) {
   viewer::FrameDraw draw;
   draw.camera = scene.camera;
   const int texture =
-      renderer->UploadTexture({scene.crop.color, scene.crop.mask, scene.crop.camera, {}, {}});
+      renderer->UploadTexture({scene.crop.color, scene.crop.mask, scene.crop.camera, {}, {}, {}});
   for (const ReferencePart& p : scene.parts) {
     viewer::CylinderDraw c;
     c.a = p.cylinder.a;
@@ -105,9 +105,12 @@ void AddRenderRows(proto::Report& report, const CoreBenchOptions& options) {
   // The same with three candidates per cylinder blended by visibility (the costliest mode:
   // every candidate sampled with its part-label and depth texture).
   const int labelled = renderer->UploadTexture(
-      {scene.crop.color, scene.crop.mask, scene.crop.camera,
+      {scene.crop.color,
+       scene.crop.mask,
+       scene.crop.camera,
        ImageLabel8(scene.crop.color.width, scene.crop.color.height, 1, 1),
-       Image<float>(scene.crop.color.width, scene.crop.color.height, 1, 0.0f)});
+       Image<float>(scene.crop.color.width, scene.crop.color.height, 1, 0.0f),
+       {}});
   for (viewer::CylinderDraw& c : draw.cylinders) {
     c.texturing = TexturingMode::kBlendVisible;
     if (c.candidates.empty()) continue;

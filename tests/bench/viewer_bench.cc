@@ -25,6 +25,7 @@
 #include "viewer-client/play/texture_cache.h"
 #include "viewer-client/play/texturing_presets.h"
 #include "viewer-client/play/viewer_camera.h"
+#include "viewer-client/render/reference_draw.h"
 #include "viewer-client/render/renderer.h"
 
 namespace reenact::bench {
@@ -260,35 +261,23 @@ int RunViewerBench(const CommandLine& cl) {
 
   proto::Report report{"viewer", {}};
 
-  // The CPU reference renderer: crops indexed by stored frame.
+  // The CPU reference renderer drawing the same draw lists: crops indexed by stored frame.
   std::map<int, ReferenceCrop> crops;
   std::vector<std::vector<ReferencePart>> cpu_parts;
   for (int k = 0; k < clip_frames; ++k) {
-    viewer::ReenactedFrame rf =
+    const viewer::ReenactedFrame rf =
         reenactment.Build(k, orbit_camera, view->viewer_from_world, [](int m) { return m; });
-    std::vector<ReferencePart> parts;
-    for (const viewer::CylinderDraw& c : rf.draw.cylinders) {
-      ReferencePart p;
-      p.cylinder = Cylinder{c.a, c.b, c.radius};
-      p.color = c.color;
-      p.part = c.part;
-      p.texturing = c.texturing;
-      for (const viewer::TextureCandidate& t : c.candidates) {
-        if (!crops.count(t.texture)) {
-          viewer::StoredTexture st = reenactment.Texture(t.texture);
-          crops[t.texture] = ReferenceCrop{std::move(st.color), std::move(st.mask), st.camera,
-                                           std::move(st.part_labels), std::move(st.depth_m)};
-        }
-        p.candidates.push_back({&crops[t.texture], t.texture, t.stored_from_viewer, t.weight});
-      }
-      parts.push_back(p);
-    }
-    cpu_parts.push_back(std::move(parts));
+    cpu_parts.push_back(viewer::ReferencePartsOf(rf.draw, [&](int texture) {
+      if (!crops.count(texture))
+        crops[texture] = viewer::ReferenceCropOf(reenactment.Texture(texture));
+      return viewer::ReferenceTexture{&crops[texture], texture};
+    }));
   }
+  const ReferenceRenderOptions cpu_options = viewer::ReferenceOptionsOf(orbit_draws.front());
   Timing cpu;
   Runs(r, clip_frames, cpu, [&](int k) {
     const auto t = Clock::now();
-    RenderReference(orbit_camera, cpu_parts[k]);
+    RenderReference(orbit_camera, cpu_parts[k], cpu_options);
     cpu.render_ms.push_back(MsSince(t));
   });
   const double cpu_fps = Median(cpu.run_fps);

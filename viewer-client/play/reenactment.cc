@@ -181,7 +181,11 @@ StoredTexture Reenactment::Texture(int n, BodyShape shape) const {
   VisibilityMaps maps =
       MakeVisibilityMaps(skeletons_in_sensor_.at(n), manifest_.radius_ratio, camera, f.mask,
                          f.depth, manifest_.depth_scale_m, extensions, shapes);
-  return {f.color, f.mask, camera, std::move(maps.part_labels), std::move(maps.depth_m)};
+  Image<float> normals;
+  if (subject_light_.found && !maps.depth_m.empty())
+    normals = DepthNormalMap(maps.depth_m, maps.part_labels, camera);
+  return {f.color,           f.mask, camera, std::move(maps.part_labels), std::move(maps.depth_m),
+          std::move(normals)};
 }
 
 ReenactedFrame Reenactment::Build(int k, const PinholeCamera& viewer_camera,

@@ -99,8 +99,10 @@ class Reenactment {
 
   // The stored crop of frame n as the renderer uploads it, with its visibility maps
   // (common/texture/visibility_maps.h: part labels of the posed cylinder model, depth in
-  // metres), computed here on each call (the caller uploads each frame once). The part labels
-  // come from the shape options().texturing draws, or the one named.
+  // metres) and, where the clip's subject light was found, its depth normals for relighting
+  // (common/texture/subject_light.h DepthNormalMap), computed here on each call (the caller
+  // uploads each frame once). The part labels come from the shape options().texturing draws,
+  // or the one named.
   StoredTexture Texture(int n) const;
   StoredTexture Texture(int n, BodyShape shape) const;
 

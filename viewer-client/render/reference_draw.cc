@@ -3,7 +3,7 @@
 namespace reenact::viewer {
 
 ReferenceCrop ReferenceCropOf(const StoredTexture& t) {
-  return ReferenceCrop{t.color, t.mask, t.camera, t.part_labels, t.depth_m};
+  return ReferenceCrop{t.color, t.mask, t.camera, t.part_labels, t.depth_m, t.normals};
 }
 
 std::vector<ReferencePart> ReferencePartsOf(

@@ -18,11 +18,20 @@ constexpr float kJointPointSize = 5.0f;
 
 struct UploadedTexture {
   GlTexture texture;
-  GlTexture visibility;  // RG32F: part label, depth in metres
+  GlTexture visibility;  // RGBA32F: part label, depth in metres, normal (octahedral) or 4
   int width = 0;
   int height = 0;
   PinholeCamera camera;
 };
+
+// Octahedral coordinates in [-1, 1]^2 of a unit vector (the shader's OctahedralDecode inverts
+// them).
+Eigen::Vector2f OctahedralEncode(const Eigen::Vector3f& n) {
+  const Eigen::Vector3f a = n / (std::abs(n.x()) + std::abs(n.y()) + std::abs(n.z()));
+  if (a.z() >= 0) return a.head<2>();
+  return {(1 - std::abs(a.y())) * (a.x() >= 0 ? 1.0f : -1.0f),
+          (1 - std::abs(a.x())) * (a.y() >= 0 ? 1.0f : -1.0f)};
+}
 
 std::array<float, 16> ToFloat(const Eigen::Matrix4d& m) {
   std::array<float, 16> out{};
@@ -43,7 +52,7 @@ struct Renderer::Impl {
     GlProgram program;
     GLint projection = -1, model = -1, normal = -1, ring_width = -1, ring_depth = -1,
           ring_width_slope = -1, ring_depth_slope = -1, textured = -1, color = -1, stored = -1,
-          intrinsics = -1, size = -1, light = -1, stored_light = -1;
+          intrinsics = -1, size = -1, relight = -1, light = -1, stored_light = -1;
     GLint mode = -1, weight = -1, label = -1, depth_tolerance = -1;  // visible variants only
   };
   std::array<CylinderProgram, 1 + kMaxTextureCandidates> cylinder_programs;
@@ -119,8 +128,7 @@ Status Renderer::Impl::Initialize(int w, int h) {
     for (int i = 0; i < candidates; ++i) {
       const std::string n = std::to_string(i);
       glUniform1i(UniformLocation(p, ("u_texture" + n).c_str()), i);
-      if (visibility)
-        glUniform1i(UniformLocation(p, ("u_visibility" + n).c_str()), kMaxTextureCandidates + i);
+      glUniform1i(UniformLocation(p, ("u_visibility" + n).c_str()), kMaxTextureCandidates + i);
     }
     c.projection = UniformLocation(p, "u_projection");
     c.model = UniformLocation(p, "u_viewer_from_cylinder");
@@ -134,6 +142,7 @@ Status Renderer::Impl::Initialize(int w, int h) {
     c.stored = UniformLocation(p, "u_stored_from_viewer");
     c.intrinsics = UniformLocation(p, "u_intrinsics");
     c.size = UniformLocation(p, "u_texture_size");
+    c.relight = UniformLocation(p, "u_relight");
     c.light = UniformLocation(p, "u_light");
     c.stored_light = UniformLocation(p, "u_stored_light");
     if (visibility) {
@@ -287,6 +296,7 @@ void Renderer::Impl::DrawCylinders(const FrameDraw& frame,
     if (c.depth_tolerance >= 0)
       glUniform1f(c.depth_tolerance, static_cast<float>(frame.depth_tolerance_m));
     const Eigen::Vector3f light = frame.subject_light.cast<float>();
+    glUniform1i(c.relight, light.isZero(0) ? 0 : 1);
     glUniform3f(c.light, light.x(), light.y(), light.z());
   }
   glEnable(GL_DEPTH_TEST);
@@ -343,10 +353,8 @@ void Renderer::Impl::DrawCylinders(const FrameDraw& frame,
           stored_light[3 * i + k] = static_cast<float>(candidate.stored_light[k]);
         glActiveTexture(GL_TEXTURE0 + i);
         glBindTexture(GL_TEXTURE_2D, t.texture.id());
-        if (visibility) {
-          glActiveTexture(GL_TEXTURE0 + kMaxTextureCandidates + i);
-          glBindTexture(GL_TEXTURE_2D, t.visibility.id());
-        }
+        glActiveTexture(GL_TEXTURE0 + kMaxTextureCandidates + i);
+        glBindTexture(GL_TEXTURE_2D, t.visibility.id());
       }
       glUniformMatrix4fv(program.stored, count, GL_FALSE, stored.data());
       glUniform4fv(program.intrinsics, count, intrinsics.data());
@@ -429,6 +437,13 @@ int Renderer::UploadTexture(const StoredTexture& texture) {
                 "texture part labels must be empty or single-channel of the crop's size");
   REENACT_CHECK(empty_or_crop_sized(texture.depth_m),
                 "texture depth must be empty or single-channel of the crop's size");
+  REENACT_CHECK(texture.normals.empty() ||
+                    (texture.normals.channels == 3 && texture.normals.width == color.width &&
+                     texture.normals.height == color.height),
+                "texture normals must be empty or 3-channel of the crop's size");
+  REENACT_CHECK(std::all_of(texture.normals.data.begin(), texture.normals.data.end(),
+                            [](float v) { return std::isfinite(v); }),
+                "texture normals must be finite");
   impl_->MakeCurrent();
   std::vector<uint8_t> rgba(static_cast<size_t>(color.width) * color.height * 4);
   for (size_t i = 0, n = static_cast<size_t>(color.width) * color.height; i < n; ++i) {
@@ -446,18 +461,26 @@ int Renderer::UploadTexture(const StoredTexture& texture) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, color.width, color.height, 0, GL_RGBA,
                GL_UNSIGNED_BYTE, rgba.data());
-  std::vector<float> label_depth(static_cast<size_t>(color.width) * color.height * 2, 0.0f);
+  std::vector<float> data(static_cast<size_t>(color.width) * color.height * 4, 0.0f);
   for (size_t i = 0, n = static_cast<size_t>(color.width) * color.height; i < n; ++i) {
-    if (!texture.part_labels.empty()) label_depth[2 * i] = texture.part_labels.data[i];
-    if (!texture.depth_m.empty()) label_depth[2 * i + 1] = texture.depth_m.data[i];
+    if (!texture.part_labels.empty()) data[4 * i] = texture.part_labels.data[i];
+    if (!texture.depth_m.empty()) data[4 * i + 1] = texture.depth_m.data[i];
+    const Eigen::Vector3f normal =
+        texture.normals.empty()
+            ? Eigen::Vector3f::Zero()
+            : Eigen::Vector3f(texture.normals.data[3 * i], texture.normals.data[3 * i + 1],
+                              texture.normals.data[3 * i + 2]);
+    const Eigen::Vector2f e = normal.isZero(0) ? Eigen::Vector2f(4, 4) : OctahedralEncode(normal);
+    data[4 * i + 2] = e.x();
+    data[4 * i + 3] = e.y();
   }
   glBindTexture(GL_TEXTURE_2D, uploaded.visibility.id());
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, color.width, color.height, 0, GL_RG, GL_FLOAT,
-               label_depth.data());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, color.width, color.height, 0, GL_RGBA, GL_FLOAT,
+               data.data());
   impl_->textures.push_back(std::move(uploaded));
   return static_cast<int>(impl_->textures.size() - 1);
 }

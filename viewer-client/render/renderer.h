@@ -44,6 +44,10 @@ struct StoredTexture {
   // stored depth in metres (0 = no reading; empty: the depth test always passes).
   ImageLabel8 part_labels;
   Image<float> depth_m;
+  // Relighting (common/render/texturing.h): the stored surface's normal at each texel, crop
+  // camera frame, unit, (0, 0, 0) where unknown (common/texture/subject_light.h
+  // DepthNormalMap); empty or channels 3 of the crop's size.
+  Image<float> normals;
 };
 
 // One texture candidate of a cylinder (common/render/texturing.h).
@@ -126,10 +130,11 @@ class Renderer {
   ~Renderer();
 
   // Uploads a crop (premultiplied RGBA: mask in alpha, linear filtering) and its visibility
-  // data (one RG32F texture: label, depth in metres; nearest sampling) and returns its
-  // index, counting from 0. Preconditions (CHECK): colour has 3 channels, mask 1 channel and
-  // the same size, not empty, camera has the crop's size and passes Check(), part labels
-  // and depth each empty or 1 channel of the crop's size.
+  // and normal data (one RGBA32F texture: label, depth in metres, the normal's octahedral
+  // coordinates or 4 where none; nearest sampling) and returns its index, counting from 0.
+  // Preconditions (CHECK): colour has 3 channels, mask 1 channel and the same size, not empty,
+  // camera has the crop's size and passes Check(), part labels and depth each empty or 1
+  // channel and normals empty or 3 channels of the crop's size and finite.
   int UploadTexture(const StoredTexture& texture);
   size_t texture_count() const;
   // Frees every uploaded texture; indices start again at 0.

@@ -46,15 +46,16 @@ uniform vec3 u_color;
 uniform mat4 u_stored_from_viewer[CANDIDATES];
 uniform vec4 u_intrinsics[CANDIDATES];
 uniform vec2 u_texture_size[CANDIDATES];
+uniform int u_relight;
 uniform vec3 u_light;
 uniform vec3 u_stored_light[CANDIDATES];
 uniform sampler2D u_texture0;
+uniform sampler2D u_visibility0;
 #if VISIBILITY
 uniform int u_mode;
 uniform float u_weight[CANDIDATES];
 uniform float u_part_label;
 uniform float u_depth_tolerance;
-uniform sampler2D u_visibility0;
 #endif
 #if CANDIDATES > 1
 uniform sampler2D u_texture1;
@@ -69,12 +70,17 @@ layout(location = 0) out vec4 out_color;
 // common/texture/subject_light.h's SubjectShade.
 float Shade(vec3 n, vec3 light) { return 1.0 + max(0.0, dot(n, light)); }
 
+vec2 SignNotZero(vec2 v) { return vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0); }
+
+// The unit vector of octahedral coordinates e (renderer.cc's OctahedralEncode).
+vec3 OctahedralDecode(vec2 e) {
+  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * SignNotZero(n.xy);
+  return normalize(n);
+}
+
 // 0: unusable, 1: usable, 2: usable and visible.
-#if VISIBILITY
 int Candidate(int i, sampler2D tex, sampler2D vis, out vec3 rgb) {
-#else
-int Candidate(int i, sampler2D tex, out vec3 rgb) {
-#endif
   rgb = vec3(0.0);
   vec4 ps = u_stored_from_viewer[i] * vec4(v_position, 1.0);
   vec3 p = ps.xyz / ps.w;
@@ -85,14 +91,19 @@ int Candidate(int i, sampler2D tex, out vec3 rgb) {
   if (any(lessThan(tc, vec2(0.0))) || any(greaterThan(tc, vec2(1.0)))) return 0;
   vec4 texel = texture(tex, tc);
   if (texel.a < 0.5) return 0;
-  vec3 n = normalize(v_normal);
-  rgb = texel.rgb / texel.a * (Shade(n, u_light) / Shade(n, u_stored_light[i]));
-#if VISIBILITY
+  rgb = texel.rgb / texel.a;
   ivec2 size = ivec2(u_texture_size[i]);
   ivec2 nearest = clamp(ivec2(floor(uv + 0.5)), ivec2(0), size - 1);
-  vec2 label_depth = texelFetch(vis, nearest, 0).rg;
-  if (label_depth.r != u_part_label) return 1;
-  if (label_depth.g > 0.0 && !(abs(label_depth.g - p.z) <= u_depth_tolerance)) return 1;
+  vec4 data = texelFetch(vis, nearest, 0);  // label, depth, stored normal (octahedral)
+  if (u_relight != 0) {
+    vec3 n = data.b <= 1.0 ? normalize(transpose(mat3(u_stored_from_viewer[i])) *
+                                       OctahedralDecode(data.ba))
+                           : normalize(v_normal);
+    rgb *= Shade(n, u_light) / Shade(n, u_stored_light[i]);
+  }
+#if VISIBILITY
+  if (data.r != u_part_label) return 1;
+  if (data.g > 0.0 && !(abs(data.g - p.z) <= u_depth_tolerance)) return 1;
   return 2;
 #else
   return 1;
@@ -109,7 +120,7 @@ void main() {
   }
 #if !VISIBILITY
   vec3 rgb0;
-  if (Candidate(0, u_texture0, rgb0) == 0) discard;
+  if (Candidate(0, u_texture0, u_visibility0, rgb0) == 0) discard;
   out_color = vec4(rgb0, 1.0);
 #else
   vec3 rgb[CANDIDATES];

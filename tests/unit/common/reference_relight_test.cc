@@ -3,6 +3,7 @@
 // against the shading computed from the exact geometry of constructed scenes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/error/check.h"
@@ -18,11 +19,11 @@ PinholeCamera Camera() { return PinholeCamera{160, 120, 200, 200, 80.3, 60.7, {}
 // every pixel samples its own texel.
 ReferenceCrop GreyCrop(uint8_t value) {
   const PinholeCamera cam = Camera();
-  return {ImageRgb8(cam.width, cam.height, 3, value),
-          ImageGray8(cam.width, cam.height, 1, 255),
-          cam,
-          {},
-          {}};
+  ReferenceCrop crop;
+  crop.color = ImageRgb8(cam.width, cam.height, 3, value);
+  crop.mask = ImageGray8(cam.width, cam.height, 1, 255);
+  crop.camera = cam;
+  return crop;
 }
 
 ReferencePart PartOn(const Cylinder& cylinder, const ReferenceCrop& crop,
@@ -51,8 +52,9 @@ TEST(ReferenceRelight, CapIsReshadedByTheRatioOfTheTwoShadings) {
   const ReferencePart lit_then = PartOn(kHeadOn, crop, Eigen::Vector3d(0.3, 0, -0.5));
   EXPECT_EQ(CapValue(RenderReference(Camera(), {&lit_then, 1}, options)), 120);  // 180 / 1.5
 
+  // A zero light is no relighting, whatever the candidates' stored lights.
   options.subject_light = Eigen::Vector3d::Zero();
-  EXPECT_EQ(CapValue(RenderReference(Camera(), {&lit_then, 1}, options)), 67);  // 100 / 1.5
+  EXPECT_EQ(CapValue(RenderReference(Camera(), {&lit_then, 1}, options)), 100);
 
   // A light behind the cap (n . L < 0) shades it as ambient only: no change.
   options.subject_light = Eigen::Vector3d(0, 0, 2);
@@ -99,6 +101,50 @@ TEST(ReferenceRelight, SideOfACylinderFollowsTheExactNormals) {
     }
   EXPECT_GT(checked, 2000);
   EXPECT_GT(lit, 500);  // the upper half is brightened
+}
+
+// With the crop's normal map, the stored surface's own normal, carried to the viewer by the
+// rotation of stored_from_viewer, replaces the model's: here every texel's normal is
+// n_s = (0.6, 0, -0.8) and the map turns the viewer's frame by 90 degrees about the optical
+// axis, so the carried normal is R^T n_s = (0, -0.6, -0.8), and a light along -y shades it by
+// 1 + 0.6 where the model's cap normal (0, 0, -1) would leave 1.
+TEST(ReferenceRelight, TheStoredNormalIsCarriedWithTheTexture) {
+  ReferenceCrop crop = GreyCrop(100);
+  crop.normals = Image<float>(crop.color.width, crop.color.height, 3, 0.0f);
+  for (int y = 0; y < crop.color.height; ++y)
+    for (int x = 0; x < crop.color.width; ++x) {
+      crop.normals.at(x, y, 0) = 0.6f;
+      crop.normals.at(x, y, 2) = -0.8f;
+    }
+  ReferencePart part = PartOn(kHeadOn, crop, Eigen::Vector3d::Zero());
+  Eigen::Matrix4d turn = Eigen::Matrix4d::Identity();
+  turn.topLeftCorner<3, 3>() =
+      Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  part.candidates[0].stored_from_viewer = turn;
+  ReferenceRenderOptions options;
+  options.subject_light = Eigen::Vector3d(0, -1, 0);
+  EXPECT_EQ(CapValue(RenderReference(Camera(), {&part, 1}, options)), 160);
+  // The same light as the stored frame saw it: no change.
+  part.candidates[0].stored_light = options.subject_light;
+  EXPECT_EQ(CapValue(RenderReference(Camera(), {&part, 1}, options)), 100);
+
+  // Where the map holds no normal (zero), the model's normal is used: the cap's faces the
+  // viewer, so this light leaves it unshaded, and a light towards the viewer doubles it.
+  std::fill(crop.normals.data.begin(), crop.normals.data.end(), 0.0f);
+  part.candidates[0].stored_light = Eigen::Vector3d::Zero();
+  EXPECT_EQ(CapValue(RenderReference(Camera(), {&part, 1}, options)), 100);
+  options.subject_light = Eigen::Vector3d(0, 0, -1);
+  EXPECT_EQ(CapValue(RenderReference(Camera(), {&part, 1}, options)), 200);
+}
+
+TEST(ReferenceRelight, NormalMapsOfAnotherSizeOrNotFiniteAreRefused) {
+  ReferenceCrop crop = GreyCrop(100);
+  crop.normals = Image<float>(crop.color.width, crop.color.height, 1, 0.0f);
+  const ReferencePart part = PartOn(kHeadOn, crop, Eigen::Vector3d::Zero());
+  EXPECT_THROW(RenderReference(Camera(), {&part, 1}), CheckError);
+  crop.normals = Image<float>(crop.color.width, crop.color.height, 3, 0.0f);
+  crop.normals.at(5, 5, 2) = INFINITY;
+  EXPECT_THROW(RenderReference(Camera(), {&part, 1}), CheckError);
 }
 
 TEST(ReferenceRelight, NonFiniteLightsAreRefused) {

@@ -693,6 +693,54 @@ TEST(AppendLightSamples, TheLightOfATurningSubjectIsRecovered) {
   EXPECT_GT(fit.bins, 200);
 }
 
+// DepthNormalMap: every pixel's DepthNormal (the samples' normals, before the rotation to the
+// world), zero elsewhere; against the true cylinder normals with the bounds of
+// SamplesCarryTheFramesNormalsColoursAndBins (median 2 degrees: whole-millimetre depth).
+TEST(DepthNormalMap, HoldsEachPixelsDepthNormalAndZeroWhereThereIsNone) {
+  const SyntheticFrame f = RenderFrame(testing::StandingPerson(2.5, Deg(30), false),
+                                       Eigen::Matrix3d::Identity(), Eigen::Vector3d::UnitX());
+  const Image<float> normals = DepthNormalMap(f.maps.depth_m, f.maps.part_labels, f.camera);
+  ASSERT_EQ(normals.channels, 3);
+  ASSERT_EQ(normals.width, f.camera.width);
+  ASSERT_EQ(normals.height, f.camera.height);
+  int with_normal = 0, background = 0;
+  std::vector<double> error_deg;
+  for (int y = 0; y < f.camera.height; ++y)
+    for (int x = 0; x < f.camera.width; ++x) {
+      const Eigen::Vector3d n(normals.at(x, y, 0), normals.at(x, y, 1), normals.at(x, y, 2));
+      const auto expected = DepthNormal(f.maps.depth_m, f.maps.part_labels, f.camera, x, y, {});
+      if (!expected) {
+        EXPECT_EQ(n, Eigen::Vector3d::Zero()) << x << ", " << y;
+        background += f.maps.part_labels.at(x, y) == kBackgroundLabel;
+        continue;
+      }
+      ++with_normal;
+      EXPECT_LT((n - *expected).norm(), 1e-6) << x << ", " << y;
+      EXPECT_NEAR(n.norm(), 1.0, 1e-6);
+      if (f.has_truth.at(x, y))
+        error_deg.push_back(
+            AngleDeg(n, f.true_normal[static_cast<size_t>(y) * f.camera.width + x]));
+    }
+  EXPECT_GT(with_normal, 5000);
+  EXPECT_GT(background, 100000);  // the background has none
+  ASSERT_GT(error_deg.size(), 5000u);
+  std::sort(error_deg.begin(), error_deg.end());
+  EXPECT_LT(error_deg[error_deg.size() / 2], 2.0);
+}
+
+TEST(DepthNormalMap, RefusesMapsOfAnotherSizeAndBadOptions) {
+  const SyntheticFrame f = RenderFrame(testing::StandingPerson(2.5, 0, false),
+                                       Eigen::Matrix3d::Identity(), Eigen::Vector3d::UnitX());
+  EXPECT_THROW(DepthNormalMap(Image<float>(10, 10, 1, 1.0f), f.maps.part_labels, f.camera),
+               CheckError);
+  EXPECT_THROW(DepthNormalMap(f.maps.depth_m, ImageLabel8(10, 10, 1, 1), f.camera), CheckError);
+  LightSampleOptions bad;
+  bad.normal_step = 0;
+  EXPECT_THROW(DepthNormalMap(f.maps.depth_m, f.maps.part_labels, f.camera, bad), CheckError);
+  // A pixel outside the image has no normal.
+  EXPECT_FALSE(DepthNormal(f.maps.depth_m, f.maps.part_labels, f.camera, -1, 5, {}));
+}
+
 TEST(AppendLightSamples, AnInvalidFrameIsRefused) {
   const SyntheticFrame f = RenderFrame(testing::StandingPerson(2.5, 0, false),
                                        Eigen::Matrix3d::Identity(), Eigen::Vector3d::UnitX());

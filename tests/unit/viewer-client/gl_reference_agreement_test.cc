@@ -303,32 +303,37 @@ namespace reenact::viewer {
 namespace {
 
 // Relighting (common/render/texturing.h): a subject light seen now and a different one per
-// candidate as recorded. The lights must change the picture (else agreement would not test
-// the rule), and both renderers must apply them alike.
+// candidate as recorded, with the stored frames' normal maps. The lights must change the
+// picture (else agreement would not test the rule), and both renderers must apply them alike.
+void ExpectRelitAgreement(int k, ReenactedFrame& frame, Renderer& renderer,
+                          UploadedFrames& uploaded) {
+  // The clip's light was found, so every stored frame carries its normal map.
+  ASSERT_TRUE(RecordedClip().subject_light().found);
+  for (const auto& [texture, crop] : uploaded.crop_of_texture) EXPECT_FALSE(crop.normals.empty());
+  const ReferenceRender unlit = uploaded.RenderReferenceOf(frame.draw);
+  frame.draw.subject_light = Eigen::Vector3d(0.4, -0.5, -0.6);
+  int i = 0;
+  for (CylinderDraw& c : frame.draw.cylinders)
+    for (TextureCandidate& t : c.candidates)
+      t.stored_light =
+          Eigen::AngleAxisd(0.7 * ++i, Eigen::Vector3d::UnitY()) * Eigen::Vector3d(-0.3, 0.6, -0.8);
+  const ReferenceRender ref = uploaded.RenderReferenceOf(frame.draw);
+  double change = 0;
+  int both = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      if (!unlit.mask.at(x, y) || !ref.mask.at(x, y)) continue;
+      ++both;
+      for (int ch = 0; ch < 3; ++ch)
+        change += std::abs(ref.color.at(x, y, ch) - unlit.color.at(x, y, ch));
+    }
+  ASSERT_GT(both, 0);
+  EXPECT_GT(change / (3.0 * both), 5.0) << "k " << k;
+  ExpectAgreement(renderer.Render(frame.draw), ref, k);
+}
+
 TEST(GlReferenceRelight, RelitFramesAgreeWithTheCpuReference) {
-  ForEachOrbitFrame(60.0,
-                    [](int k, ReenactedFrame& frame, Renderer& renderer, UploadedFrames& uploaded) {
-                      const ReferenceRender unlit = uploaded.RenderReferenceOf(frame.draw);
-                      frame.draw.subject_light = Eigen::Vector3d(0.4, -0.5, -0.6);
-                      int i = 0;
-                      for (CylinderDraw& c : frame.draw.cylinders)
-                        for (TextureCandidate& t : c.candidates)
-                          t.stored_light = Eigen::AngleAxisd(0.7 * ++i, Eigen::Vector3d::UnitY()) *
-                                           Eigen::Vector3d(-0.3, 0.6, -0.8);
-                      const ReferenceRender ref = uploaded.RenderReferenceOf(frame.draw);
-                      double change = 0;
-                      int both = 0;
-                      for (int y = 0; y < kHeight; ++y)
-                        for (int x = 0; x < kWidth; ++x) {
-                          if (!unlit.mask.at(x, y) || !ref.mask.at(x, y)) continue;
-                          ++both;
-                          for (int ch = 0; ch < 3; ++ch)
-                            change += std::abs(ref.color.at(x, y, ch) - unlit.color.at(x, y, ch));
-                        }
-                      ASSERT_GT(both, 0);
-                      EXPECT_GT(change / (3.0 * both), 5.0) << "k " << k;
-                      ExpectAgreement(renderer.Render(frame.draw), ref, k);
-                    });
+  ForEachOrbitFrame(60.0, ExpectRelitAgreement);
 }
 
 }  // namespace

@@ -318,7 +318,7 @@ TEST(GlRenderer, RejectsAMaskOfAnotherSize) {
   EXPECT_EQ(renderer.texture_count(), 0u);
 }
 
-TEST(GlRenderer, RejectsPartLabelsOrDepthOfAnotherSize) {
+TEST(GlRenderer, RejectsPartLabelsDepthOrNormalsOfAnotherSizeAndNonFiniteNormals) {
   Renderer renderer = MakeRenderer();
   StoredTexture labels = PositionCodedCrop(ViewerCamera(), 0, 0, 8, 8);
   labels.part_labels = ImageLabel8(8, 7, 1, 1);
@@ -326,6 +326,12 @@ TEST(GlRenderer, RejectsPartLabelsOrDepthOfAnotherSize) {
   StoredTexture depth = PositionCodedCrop(ViewerCamera(), 0, 0, 8, 8);
   depth.depth_m = Image<float>(8, 8, 2, 1.0f);
   EXPECT_THROW(renderer.UploadTexture(depth), CheckError);
+  StoredTexture normals = PositionCodedCrop(ViewerCamera(), 0, 0, 8, 8);
+  normals.normals = Image<float>(8, 8, 1, 0.0f);
+  EXPECT_THROW(renderer.UploadTexture(normals), CheckError);
+  normals.normals = Image<float>(8, 8, 3, 0.0f);
+  normals.normals.at(3, 4, 1) = NAN;
+  EXPECT_THROW(renderer.UploadTexture(normals), CheckError);
   EXPECT_EQ(renderer.texture_count(), 0u);
 }
 

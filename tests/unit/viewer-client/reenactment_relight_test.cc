@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <random>
@@ -73,6 +74,15 @@ TEST(ReenactmentRelight, TheScenesLightIsFittedAtLoad) {
   EXPECT_NEAR(fit_across.norm(), true_across.norm(), 0.2 * true_across.norm());
   EXPECT_GT(fit.light.dot(up), 0.0);  // the light is above
   EXPECT_GT(fit.gain, 0.2);
+
+  // With a light, every stored crop carries its depth normals for relighting.
+  const StoredTexture t = LitClip().Texture(30);
+  ASSERT_FALSE(t.depth_m.empty());
+  const Image<float> expected = DepthNormalMap(t.depth_m, t.part_labels, t.camera);
+  EXPECT_EQ(t.normals.channels, 3);
+  EXPECT_EQ(t.normals.data, expected.data);
+  EXPECT_TRUE(
+      std::any_of(t.normals.data.begin(), t.normals.data.end(), [](float v) { return v != 0; }));
 }
 
 TEST(ReenactmentRelight, AFlatLitSubjectHasNoLight) {
@@ -81,6 +91,7 @@ TEST(ReenactmentRelight, AFlatLitSubjectHasNoLight) {
   EXPECT_FALSE(fit.found);
   EXPECT_EQ(fit.light, Eigen::Vector3d::Zero());
   EXPECT_FALSE(fit.reason.empty());
+  EXPECT_TRUE(clip.Texture(30).normals.empty());  // nothing to relight with
 }
 
 // Build with relighting: the frame's light is L seen from the viewer, and each candidate's
