@@ -2,21 +2,17 @@
 // reenacted frames of a recorded synthetic clip, drawn by both, must agree in silhouette
 // and in colour. Needs OpenGL (EGL surfaceless); suites start with "Gl".
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdlib>
-#include <filesystem>
 #include <functional>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "capture-client/record/clip_recorder.h"
-#include "capture-client/source/synthetic_source.h"
 #include "common/render/reference_renderer.h"
 #include "common/texture/texture_mapping.h"
-#include "proto/clip/clip_directory.h"
+#include "tests/unit/viewer-client/recorded_synthetic_clip.h"
 #include "viewer-client/play/reenactment.h"
 #include "viewer-client/play/viewer_camera.h"
 #include "viewer-client/render/reference_draw.h"
@@ -27,28 +23,9 @@ namespace {
 
 constexpr int kWidth = 640, kHeight = 480;
 
-// The first 2 s of the synthetic "turn-and-kick" scenario through the real recording path
-// (render, crop, JPEG/PNG encode, clip directory) and back.
+// The first 2 s of the synthetic "turn-and-kick" scenario, recorded and read back.
 const Reenactment& RecordedClip() {
-  static const Reenactment clip = [] {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                      ("reenact-gl-reference-" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
-    auto source = capture::SyntheticSource::Open("turn-and-kick");
-    EXPECT_TRUE(source.ok());
-    capture::RecordOptions options;
-    options.max_frames = 60;
-    auto recorded = capture::RecordClip(**source, dir, options);
-    EXPECT_TRUE(recorded.ok()) << recorded.error().message;
-    auto directory = proto::ReadClipDirectory(dir);
-    EXPECT_TRUE(directory.ok()) << directory.error().message;
-    std::vector<proto::ClipFrame> frames;
-    for (int64_t n = 0; n < directory->manifest().frame_count; ++n)
-      frames.push_back(directory->ReadFrame(n).value());
-    Reenactment reenactment(directory->manifest(), std::move(frames));
-    std::filesystem::remove_all(dir);
-    return reenactment;
-  }();
+  static const Reenactment clip = testing::RecordedSyntheticClip("turn-and-kick", 60);
   return clip;
 }
 

@@ -2,19 +2,15 @@
 // recorded through the real capture path, and Build hands the renderers the light as the
 // viewer sees it and as every candidate's stored frame saw it.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
 
-#include "capture-client/record/clip_recorder.h"
-#include "capture-client/source/synthetic_source.h"
 #include "capture-client/synthetic/room.h"
-#include "proto/clip/clip_directory.h"
+#include "tests/unit/viewer-client/recorded_synthetic_clip.h"
 #include "viewer-client/play/texturing_presets.h"
 #include "viewer-client/play/viewer_camera.h"
 
@@ -29,25 +25,9 @@ double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 // more than a quarter turn), recorded and read back, the subject lit with ambient share
 // `ambient`.
 Reenactment RecordedClip(double ambient) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() /
-      ("reenact-relight-" + std::to_string(::getpid()) + "-" + std::to_string(ambient));
-  std::filesystem::remove_all(dir);
   capture::SyntheticBodySpec body;
   body.ambient = ambient;
-  auto source = capture::SyntheticSource::Open("turn-and-kick", 1, body);
-  EXPECT_TRUE(source.ok());
-  capture::RecordOptions options;
-  options.max_frames = 90;
-  auto recorded = capture::RecordClip(**source, dir, options);
-  EXPECT_TRUE(recorded.ok()) << recorded.error().message;
-  auto directory = proto::ReadClipDirectory(dir);
-  EXPECT_TRUE(directory.ok()) << directory.error().message;
-  std::vector<proto::ClipFrame> frames;
-  for (int64_t n = 0; n < directory->manifest().frame_count; ++n)
-    frames.push_back(directory->ReadFrame(n).value());
-  std::filesystem::remove_all(dir);
-  return Reenactment(directory->manifest(), std::move(frames));
+  return testing::RecordedSyntheticClip("turn-and-kick", 90, body);
 }
 
 const Reenactment& LitClip() {
