@@ -365,8 +365,9 @@ SubjectLightFit FitSubjectLight(std::span<const LightSample> samples,
   for (int round = 0; round <= kRobustRounds; ++round) {
     if (round > 0) {
       cost.Reweight(best);
-      weighted_flat_cost = cost.FlatCost();
-      if (!(weighted_flat_cost > 0)) break;
+      const double weighted = cost.FlatCost();
+      if (!(weighted > 0) || !std::isfinite(weighted)) break;  // keep the last round's fit
+      weighted_flat_cost = weighted;
     }
     std::tie(best, best_cost) = SearchLight(cost, weighted_flat_cost, options);
   }
