@@ -20,4 +20,15 @@ nlohmann::json CameraJson(const PinholeCamera& c) {
           {"distortion", {d.k1, d.k2, d.p1, d.p2, d.k3}}};
 }
 
+nlohmann::json SubjectLightJson(const SubjectLightFit& fit) {
+  nlohmann::json j = {{"found", fit.found},
+                      {"light_in_world", {fit.light.x(), fit.light.y(), fit.light.z()}},
+                      {"strength", fit.light.norm()},
+                      {"gain", fit.gain},
+                      {"samples", fit.samples},
+                      {"bins", fit.bins}};
+  if (!fit.found) j["reason"] = fit.reason;
+  return j;
+}
+
 }  // namespace reenact::viewer

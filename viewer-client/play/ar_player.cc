@@ -322,6 +322,7 @@ Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::Cl
                            {"lost", summary.lost},
                            {"reloc_ms_median", summary.reloc_ms_median},
                            {"render_ms_median", summary.render_ms_median},
+                           {"subject_light", SubjectLightJson(reenactment.subject_light())},
                            {"frames", frames_json}};
   if (summary.truth_frames > 0)
     render["truth"] = {{"frames", summary.truth_frames},

@@ -118,6 +118,7 @@ Expected<PlaySummary> PlayHeadless(const Reenactment& reenactment, const std::st
                                  {"camera", CameraJson(camera)},
                                  {"world_from_viewer", PoseJson(view->world_from_viewer)},
                                  {"render_fps", summary.render_fps},
+                                 {"subject_light", SubjectLightJson(reenactment.subject_light())},
                                  {"frames", frames_json}};
   std::ofstream(options.out_dir / "render.json") << render.dump(2) << "\n";
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -82,6 +82,14 @@ TEST(GlSyntheticPlay, TracksEveryFrameNearTheTruth) {
   ASSERT_EQ(render["frames"].size(), 40u);
   EXPECT_EQ(render["truth"]["frames"], 40);
   EXPECT_EQ(render["truth"]["within_2cm_1deg"], summary->within_2cm_1deg);
+  // The clip's light (the scenario lights the subject, so one is found) as the viewer relit it.
+  const SubjectLightFit& light = clip.reenactment.subject_light();
+  ASSERT_TRUE(light.found);
+  EXPECT_EQ(render["subject_light"]["found"], true);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_DOUBLE_EQ(render["subject_light"]["light_in_world"][i].get<double>(), light.light[i]);
+  EXPECT_DOUBLE_EQ(render["subject_light"]["strength"].get<double>(), light.light.norm());
+  EXPECT_FALSE(render["subject_light"].contains("reason"));
   const SyntheticViewerPath path =
       MakeSyntheticViewerPath(capture::SyntheticScene::Create("turn-and-kick").value(), 40, 45);
   for (int k = 0; k < 40; ++k) {

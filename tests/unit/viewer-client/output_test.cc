@@ -11,6 +11,7 @@
 #include "viewer-client/output/contact_sheet.h"
 #include "viewer-client/output/mp4_writer.h"
 #include "viewer-client/output/png_writer.h"
+#include "viewer-client/output/render_json.h"
 
 namespace reenact::viewer {
 namespace {
@@ -179,6 +180,30 @@ TEST(Mp4Writer, RejectsANonPositiveFrameRate) {
   Expected<Mp4Writer> writer = Mp4Writer::Open("/tmp/never.mp4", 64, 48, 0);
   ASSERT_FALSE(writer.ok());
   EXPECT_EQ(writer.error().code, "invalid_argument");
+}
+
+TEST(RenderJson, SubjectLightSaysWhetherAndHowTheClipIsRelit) {
+  SubjectLightFit fit;
+  fit.found = true;
+  fit.light = Eigen::Vector3d(0.3, -0.4, 1.2);
+  fit.gain = 0.25;
+  fit.samples = 4000;
+  fit.bins = 300;
+  const nlohmann::json j = SubjectLightJson(fit);
+  EXPECT_EQ(j["found"], true);
+  EXPECT_EQ(j["light_in_world"], nlohmann::json({0.3, -0.4, 1.2}));
+  EXPECT_DOUBLE_EQ(j["strength"].get<double>(), 1.3);  // |(0.3, -0.4, 1.2)| = 1.3
+  EXPECT_EQ(j["gain"], 0.25);
+  EXPECT_EQ(j["samples"], 4000);
+  EXPECT_EQ(j["bins"], 300);
+  EXPECT_FALSE(j.contains("reason"));
+
+  SubjectLightFit none;
+  none.reason = "flat";
+  const nlohmann::json k = SubjectLightJson(none);
+  EXPECT_EQ(k["found"], false);
+  EXPECT_EQ(k["strength"], 0.0);
+  EXPECT_EQ(k["reason"], "flat");
 }
 
 }  // namespace
