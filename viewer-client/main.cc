@@ -39,6 +39,19 @@ constexpr const char* kUsage =
 int Fail(const Error& e) { return ReportFailure("reenact-viewer", e); }
 
 // --steady and --texturing.
+// Whether the texturing relights the clip, and with what light (or why not).
+void PrintRelighting(const viewer::Reenactment& reenactment) {
+  if (!reenactment.options().texturing.relight) return;
+  const SubjectLightFit& fit = reenactment.subject_light();
+  if (fit.found)
+    std::printf(
+        "relighting under the clip's light: strength %.2f, explains %.0f%% of how the "
+        "subject's colours vary as it turns\n",
+        fit.light.norm(), 100 * fit.gain);
+  else
+    std::printf("not relighting: %s\n", fit.reason.c_str());
+}
+
 Expected<viewer::ReenactmentOptions> ReenactmentOptionsFrom(const CommandLine& cl) {
   viewer::ReenactmentOptions options;
   options.steady_motion = cl.Has("steady");
@@ -139,6 +152,7 @@ int PlayAr(const CommandLine& cl, const std::string& clip_id, const std::string&
   auto clip = viewer::FetchClip(api, clip_id, cl.GetOr("cache", ".cache/reenact-viewer"));
   if (!clip.ok()) return Fail(clip.error());
   const viewer::Reenactment reenactment(clip->manifest, std::move(clip->frames), *reenact_options);
+  PrintRelighting(reenactment);
   if (!headless) {
     viewer::ArWindowOptions window;
     window.max_frames = options.max_frames;
@@ -218,6 +232,7 @@ int Play(const CommandLine& cl) {
               static_cast<long long>(clip->manifest.frame_count), clip->bytes_total / 1024.0,
               clip->bytes_downloaded / 1024.0);
   const viewer::Reenactment reenactment(clip->manifest, std::move(clip->frames), *reenact_options);
+  PrintRelighting(reenactment);
 
   if (!cl.Has("headless")) {
     const Status played = viewer::PlayInWindow(reenactment, options);

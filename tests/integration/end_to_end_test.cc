@@ -78,6 +78,10 @@ TEST(EndToEnd, PublishBrowseAndPlayMatchesGroundTruthAtNovelViewpoint) {
                                std::chrono::seconds(300));
   ASSERT_EQ(play.exit_code, 0) << play.err;
   EXPECT_EQ(server.Stop(), 0) << "server did not stop cleanly: " << server.stderr_text();
+  // The default texturing relights: the scenario lights its subject, so the light is found and
+  // the viewer says so, and render.json records it.
+  EXPECT_NE(play.out.find("relighting under the clip's light: strength"), std::string::npos)
+      << play.out;
 
   std::ifstream render_file(out + "/render.json");
   ASSERT_TRUE(render_file) << "render.json missing";
@@ -90,6 +94,8 @@ TEST(EndToEnd, PublishBrowseAndPlayMatchesGroundTruthAtNovelViewpoint) {
   camera.cx = render["camera"]["cx"];
   camera.cy = render["camera"]["cy"];
   const Eigen::Isometry3d world_from_viewer = PoseFromJson(render["world_from_viewer"]);
+  EXPECT_EQ(render["subject_light"]["found"], true);
+  EXPECT_GT(render["subject_light"]["strength"].get<double>(), 0.0);
 
   // The viewpoint really is novel: at least 45 degrees around the subject (about world_up)
   // from the capture sensor.
