@@ -410,10 +410,15 @@ void LightSampleOptions::Check() const {
   bins.Check();
 }
 
-std::optional<Eigen::Vector3d> DepthNormal(const Image<float>& depth_m,
-                                           const ImageLabel8& part_labels,
-                                           const PinholeCamera& camera, int x, int y,
-                                           const LightSampleOptions& options) {
+namespace {
+
+// DepthNormal's rule with the back-projection given: point(x, y, z) is pixel (x, y)
+// back-projected to depth z (PinholeCamera::Unproject).
+template <typename BackProject>
+std::optional<Eigen::Vector3d> NormalFromDepth(const Image<float>& depth_m,
+                                               const ImageLabel8& part_labels, int x, int y,
+                                               const LightSampleOptions& options,
+                                               const BackProject& point) {
   if (!part_labels.Contains(x, y)) return std::nullopt;
   const int label = part_labels.at(x, y);
   if (label < 1 || label > kBodyPartCount) return std::nullopt;
@@ -431,16 +436,25 @@ std::optional<Eigen::Vector3d> DepthNormal(const Image<float>& depth_m,
   const double z_left = neighbour_depth(x - k, y), z_right = neighbour_depth(x + k, y);
   const double z_up = neighbour_depth(x, y - k), z_down = neighbour_depth(x, y + k);
   if (z_left == 0 || z_right == 0 || z_up == 0 || z_down == 0) return std::nullopt;
-  const Eigen::Vector3d along_x = camera.Unproject(Eigen::Vector2d(x + k, y), z_right) -
-                                  camera.Unproject(Eigen::Vector2d(x - k, y), z_left);
-  const Eigen::Vector3d along_y = camera.Unproject(Eigen::Vector2d(x, y + k), z_down) -
-                                  camera.Unproject(Eigen::Vector2d(x, y - k), z_up);
+  const Eigen::Vector3d along_x = point(x + k, y, z_right) - point(x - k, y, z_left);
+  const Eigen::Vector3d along_y = point(x, y + k, z_down) - point(x, y - k, z_up);
   Eigen::Vector3d normal = along_x.cross(along_y);
   const double length = normal.norm();
   if (!(length > 0) || !std::isfinite(length)) return std::nullopt;
   normal /= length;
-  if (normal.dot(camera.Unproject(Eigen::Vector2d(x, y), z)) > 0) normal = -normal;
+  if (normal.dot(point(x, y, z)) > 0) normal = -normal;
   return normal;
+}
+
+}  // namespace
+
+std::optional<Eigen::Vector3d> DepthNormal(const Image<float>& depth_m,
+                                           const ImageLabel8& part_labels,
+                                           const PinholeCamera& camera, int x, int y,
+                                           const LightSampleOptions& options) {
+  return NormalFromDepth(depth_m, part_labels, x, y, options, [&](int px, int py, double z) {
+    return camera.Unproject(Eigen::Vector2d(px, py), z);
+  });
 }
 
 Image<float> DepthNormalMap(const Image<float>& depth_m, const ImageLabel8& part_labels,
@@ -452,10 +466,19 @@ Image<float> DepthNormalMap(const Image<float>& depth_m, const ImageLabel8& part
   };
   REENACT_CHECK(sized(depth_m) && sized(part_labels),
                 "DepthNormalMap: depth and part labels must be 1-channel of the camera's size");
+  // Every pixel's undistorted ray once (Unproject is ray * z), not once per neighbour use.
+  const int w = camera.width;
+  std::vector<Eigen::Vector2d> rays(static_cast<size_t>(w) * camera.height);
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < w; ++x) rays[static_cast<size_t>(y) * w + x] = camera.Undistort({x, y});
+  const auto point = [&](int px, int py, double z) {
+    const Eigen::Vector2d& r = rays[static_cast<size_t>(py) * w + px];
+    return Eigen::Vector3d(r.x() * z, r.y() * z, z);
+  };
   Image<float> normals(camera.width, camera.height, 3, 0.0f);
   for (int y = 0; y < camera.height; ++y)
-    for (int x = 0; x < camera.width; ++x)
-      if (const auto n = DepthNormal(depth_m, part_labels, camera, x, y, options))
+    for (int x = 0; x < w; ++x)
+      if (const auto n = NormalFromDepth(depth_m, part_labels, x, y, options, point))
         for (int k = 0; k < 3; ++k) normals.at(x, y, k) = static_cast<float>((*n)[k]);
   return normals;
 }
