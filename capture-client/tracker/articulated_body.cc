@@ -69,6 +69,16 @@ bool IsHinge(BodySegment s) {
   return s == S::kLeftForearm || s == S::kRightForearm || s == S::kLeftShin || s == S::kRightShin;
 }
 
+BodySegment LimbUpper(Limb limb) {
+  constexpr S kUpper[] = {S::kLeftUpperArm, S::kRightUpperArm, S::kLeftThigh, S::kRightThigh};
+  return kUpper[static_cast<int>(limb)];
+}
+
+BodySegment LimbLower(Limb limb) {
+  constexpr S kLower[] = {S::kLeftForearm, S::kRightForearm, S::kLeftShin, S::kRightShin};
+  return kLower[static_cast<int>(limb)];
+}
+
 Eigen::Matrix3d ExpRotation(const Eigen::Vector3d& omega) {
   const double angle = omega.norm();
   if (angle < 1e-15) return Eigen::Matrix3d::Identity();

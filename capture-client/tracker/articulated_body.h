@@ -49,6 +49,12 @@ inline constexpr int kBodySegmentCount = 12;
 int SegmentParent(BodySegment s);
 bool IsHinge(BodySegment s);
 
+// The four limbs, each an upper segment on a ball joint and a lower one on a hinge.
+enum class Limb { kLeftArm = 0, kRightArm, kLeftLeg, kRightLeg };
+inline constexpr int kLimbCount = 4;
+BodySegment LimbUpper(Limb limb);
+BodySegment LimbLower(Limb limb);
+
 // A capsule (the points within radius of the segment a-b) fixed to a segment; a and b in the
 // segment's local frame, metres. The tracker fits 17: head; the chest, the abdomen and the
 // pelvis each as a pair of parallel capsules (a rounded box, wider than deep); upper arms,

@@ -26,16 +26,6 @@ Eigen::Vector3d Perpendicular(const Eigen::Vector3d& v, const Eigen::Vector3d& n
 
 }  // namespace
 
-BodySegment LimbUpper(Limb limb) {
-  constexpr S kUpper[] = {S::kLeftUpperArm, S::kRightUpperArm, S::kLeftThigh, S::kRightThigh};
-  return kUpper[static_cast<int>(limb)];
-}
-
-BodySegment LimbLower(Limb limb) {
-  constexpr S kLower[] = {S::kLeftForearm, S::kRightForearm, S::kLeftShin, S::kRightShin};
-  return kLower[static_cast<int>(limb)];
-}
-
 Eigen::Vector3d LimbEnd(const ArticulatedBody& body, const PosedBody3& posed, Limb limb) {
   return posed.sensor_from_segment[I(LimbLower(limb))] *
          Eigen::Vector3d(0, 0, -Reach(body.shape(), limb));

@@ -32,12 +32,6 @@
 
 namespace reenact::capture {
 
-enum class Limb { kLeftArm = 0, kRightArm, kLeftLeg, kRightLeg };
-
-// The limb's upper and lower (hinge) segments.
-BodySegment LimbUpper(Limb limb);
-BodySegment LimbLower(Limb limb);
-
 // The limb's end (fingertip or sole, as above) in pose `posed`.
 Eigen::Vector3d LimbEnd(const ArticulatedBody& body, const PosedBody3& posed, Limb limb);
 

@@ -12,6 +12,15 @@
 // samples. The cheapest hypothesis replaces the limb's pose when it costs at least min_gain
 // (relative) less than the current pose. Limbs are searched in turn (left arm, right arm,
 // left leg, right leg), each against the body as re-posed so far.
+//
+// The same hypotheses, ranked (RankLimbHypotheses), start the tracker's limb re-check: a
+// limb that lies on the wrong side of the body has its points explained, worse, by the torso,
+// so no coarse hypothesis beats its current pose, but one near the truth does once fitted.
+// Points that no hypothesis of the limb can reach closer than they already are (farther from
+// the limb's joint than its length allows) cost the same for every hypothesis and are summed
+// once.
+
+#include <vector>
 
 #include "capture-client/tracker/articulated_body.h"
 #include "capture-client/tracker/body_fit.h"
@@ -29,5 +38,15 @@ struct LimbSearchOptions {
 int SearchLimbs(const ArticulatedBody& body, const BodyObservation& observation,
                 const BodyFitOptions& fit, const JointLimits& limits,
                 const LimbSearchOptions& options, ArticulatedPose* pose);
+
+// The `count` (>= 0) cheapest hypotheses for `limb` by the search's cost, at most one per
+// direction of the upper segment, cheapest first; `pose` with only that limb re-posed. Empty
+// for an observation without points.
+std::vector<ArticulatedPose> RankLimbHypotheses(const ArticulatedBody& body,
+                                                const BodyObservation& observation,
+                                                const BodyFitOptions& fit,
+                                                const JointLimits& limits,
+                                                const LimbSearchOptions& options,
+                                                const ArticulatedPose& pose, Limb limb, int count);
 
 }  // namespace reenact::capture

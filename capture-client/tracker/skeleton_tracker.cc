@@ -42,6 +42,9 @@ void SkeletonTrackerOptions::Check() const {
   REENACT_CHECK(limb_search_trigger >= 0 && limb_search_trigger <= 1,
                 "limb_search_trigger in [0, 1]");
   limb_search.Check();
+  REENACT_CHECK(limb_recheck_hypotheses >= 0 && limb_recheck_gain >= 0 && limb_recheck_gain < 1,
+                "limb_recheck_hypotheses must be >= 0 and limb_recheck_gain in [0, 1)");
+  REENACT_CHECK(limb_recheck_max_other_move_m > 0, "limb_recheck_max_other_move_m must be > 0");
   REENACT_CHECK(good_inlier_share > 0 && good_inlier_share <= 1, "good_inlier_share in (0, 1]");
   REENACT_CHECK(min_coverage > 0 && min_coverage <= 1, "min_coverage in (0, 1]");
   REENACT_CHECK(lost_after_frames >= 1 && recovery_iterations >= 1,
@@ -94,6 +97,7 @@ void SkeletonTracker::Reset() {
   uncalibrated_frames_ = 0;
   travel_.Clear();
   heading_cooldown_ = 0;
+  recheck_limb_ = 0;
   motion_obs_.clear();
   motion_poses_.clear();
   since_motion_frame_ = 0;
@@ -129,6 +133,34 @@ BodyFitResult SkeletonTracker::Refine(BodyFitResult fit, const BodyObservation& 
     return fit;
   BodyFitResult again = FitBody(*body_, pose, obs, options_.fit, options_.limits);
   return again.cost < fit.cost ? again : fit;
+}
+
+BodyFitResult SkeletonTracker::RecheckLimb(BodyFitResult fit, const BodyObservation& obs,
+                                           Limb limb) const {
+  const std::vector<ArticulatedPose> starts =
+      RankLimbHypotheses(*body_, obs, options_.fit, options_.limits, options_.limb_search, fit.pose,
+                         limb, options_.limb_recheck_hypotheses);
+  const double bound = (1 - options_.limb_recheck_gain) * fit.cost;
+  // The joints of the other limbs: a fit that moves them re-interprets their data.
+  constexpr Joint kLimbJoints[kLimbCount][2] = {{Joint::kLeftElbow, Joint::kLeftHand},
+                                                {Joint::kRightElbow, Joint::kRightHand},
+                                                {Joint::kLeftKnee, Joint::kLeftFoot},
+                                                {Joint::kRightKnee, Joint::kRightFoot}};
+  std::vector<Joint> others;
+  for (int l = 0; l < kLimbCount; ++l)
+    if (l != static_cast<int>(limb))
+      others.insert(others.end(), kLimbJoints[l], kLimbJoints[l] + 2);
+  std::optional<BodyFitResult> best;
+  for (const ArticulatedPose& start : starts) {
+    BodyFitResult r = FitBody(*body_, start, obs, options_.fit, options_.limits);
+    if (r.cost > bound || (best && r.cost >= best->cost)) continue;
+    bool kept = true;
+    for (const Joint j : others)
+      kept &= (r.posed.skeleton[j] - fit.posed.skeleton[j]).norm() <=
+              options_.limb_recheck_max_other_move_m;
+    if (kept) best = std::move(r);
+  }
+  return best ? std::move(*best) : fit;
 }
 
 std::optional<BodyFitResult> SkeletonTracker::Recover(const PersonBlob& blob,
@@ -344,6 +376,10 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
   out.points = static_cast<int>(obs.points.size());
   BodyFitResult fit = FitBody(*body_, start, obs, options_.fit, options_.limits);
   fit = Refine(std::move(fit), obs);
+  if (options_.limb_recheck_hypotheses > 0) {
+    fit = RecheckLimb(std::move(fit), obs, static_cast<Limb>(recheck_limb_));
+    recheck_limb_ = (recheck_limb_ + 1) % kLimbCount;
+  }
   if (Good(fit)) fit = CheckTravelHeading(std::move(fit), blob, obs, world_from_sensor);
   out.inlier_share = fit.inlier_share;
   out.outlier_share = fit.outlier_share;

@@ -15,14 +15,15 @@
 //    frame's root motion: an object that touches the person is left out), fit the
 //    articulated body (body_fit.h) from the prediction.
 //    When many points are left unexplained, limbs are re-posed by a hypothesis search
-//    (limb_search.h) and fitted again. A fit is good when the data covers at least
-//    min_coverage of the model's silhouette (BodyFitResult::coverage: a model that slid off
-//    the person covers little; 0.4-0.65 is usual, the body hiding its own parts) and at
-//    least good_inlier_share of the points lie within inlier_m of the model's surface.
-//    Unexplained points alone (an object touching the person) do not make a fit bad. Bone
-//    lengths are fixed by construction and joint limits are enforced on every step, so
-//    neither can be violated; a failed detection or a bad fit counts as a bad frame, and
-//    lost_after_frames bad frames in a row mean the track is lost. Bad frames before that still
+//    (limb_search.h) and fitted again; optionally, every frame one limb in turn is
+//    re-checked from its best few hypotheses, each fitted (limb_recheck_hypotheses, below). A fit
+//    is good when the data covers at least min_coverage of the model's silhouette
+//    (BodyFitResult::coverage: a model that slid off the person covers little; 0.4-0.65 is usual,
+//    the body hiding its own parts) and at least good_inlier_share of the points lie within
+//    inlier_m of the model's surface. Unexplained points alone (an object touching the person) do
+//    not make a fit bad. Bone lengths are fixed by construction and joint limits are enforced on
+//    every step, so neither can be violated; a failed detection or a bad fit counts as a bad frame,
+//    and lost_after_frames bad frames in a row mean the track is lost. Bad frames before that still
 //    give a skeleton, its confidences halved.
 //  - Lost: recovery each frame, either from the calibration pose (when the person shows it
 //    again) or from the silhouette: the calibrated body placed upright on the blob (the
@@ -72,6 +73,22 @@ struct SkeletonTrackerOptions {
   // person's (metres, > 0; larger than a limb moves in one frame).
   double keep_near_model_m = 0.4;
   LimbSearchOptions limb_search;
+  // Limb re-check, every tracked frame for one limb in turn (left arm, right arm, left leg,
+  // right leg): its limb_recheck_hypotheses (>= 0; 0 = off) cheapest re-posings
+  // (limb_search.h's RankLimbHypotheses) are each fitted from there, and the cheapest fit
+  // replaces the frame's when it costs at most (1 - limb_recheck_gain) ([0, 1)) times as
+  // much. The local fit cannot bring back a limb that lies on the wrong side of the body (a
+  // hanging arm's points are then explained, worse, by the torso, and no point lies beyond
+  // outlier_m to start the search above); a hypothesis near the truth costs clearly less
+  // once fitted. The margin keeps a hidden limb, whose poses cost nearly alike, where it is.
+  // A re-check fit that moves another limb's elbow, hand, knee or foot by more than
+  // limb_recheck_max_other_move_m (> 0) is refused: it gives that limb's data to this one
+  // (a hidden arm taking the visible arm's points) rather than repairing this limb.
+  // Off by default: see docs/measurements.md (better on the CMU walks at 8 iterations, worse
+  // at 4, and on turn-and-kick it once gave the hidden arm the visible arm's points).
+  int limb_recheck_hypotheses = 0;
+  double limb_recheck_gain = 0.1;
+  double limb_recheck_max_other_move_m = 0.1;
   double good_inlier_share = 0.5;       // (0, 1]
   double min_coverage = 0.3;            // (0, 1]
   int lost_after_frames = 3;            // >= 1
@@ -156,6 +173,8 @@ class SkeletonTracker {
   Skeleton WithConfidence(const BodyFitResult& fit, bool good) const;
   bool Good(const BodyFitResult& fit) const;
   BodyFitResult Refine(BodyFitResult fit, const BodyObservation& obs) const;
+  // The limb re-check of the options for limb `limb`; returns the fit to keep.
+  BodyFitResult RecheckLimb(BodyFitResult fit, const BodyObservation& obs, Limb limb) const;
   // The best-costing fit of upright starts facing each of `headings` on the blob's floor,
   // and, given extremities, of the same starts with the limbs reaching them
   // (*from_extremities: whether such a start won).
@@ -188,6 +207,7 @@ class SkeletonTracker {
   int since_motion_frame_ = 0;
   void CollectMotionFrame(const BodyFitResult& fit, const BodyObservation& obs);
   int heading_cooldown_ = 0;
+  int recheck_limb_ = 0;  // the limb to re-check next (Limb)
 };
 
 }  // namespace reenact::capture

@@ -41,7 +41,8 @@ constexpr const char* kUsage =
     "      15-degree band, tracking frame to frame and relocalising every frame\n"
     "  reenact-eval tracker [--scenario S[,S...]] [--variants normal,fast,near]\n"
     "                       [--iterations N,...] [--subsample K,...]\n"
-    "                       [--body FILE.glb|procedural] [--noise on|off] [--json FILE]\n"
+    "                       [--body FILE.glb|procedural] [--limb-recheck N]\n"
+    "                       [--noise on|off] [--json FILE]\n"
     "      the depth skeleton tracker against the synthetic ground-truth skeleton (default\n"
     "      turn-and-kick,walk-handheld; bvh:FILE plays on --body, default CesiumMan; an\n"
     "      explicit --body plays every scenario on it, --body procedural on the procedural\n"
@@ -49,7 +50,9 @@ constexpr const char* kUsage =
     "      iterations, subsample 2); hard cases broken down (fast: every 2nd frame; near:\n"
     "      the sensor moved up to 1.2 m closer, the subject 1.8 m away and cut off); per\n"
     "      joint: mean error, bias (mean error vector in the body frame: x to the subject's\n"
-    "      right, y forward, z up the spine) and spread (RMS about the bias), cm\n";
+    "      right, y forward, z up the spine) and spread (RMS about the bias), cm;\n"
+    "      --limb-recheck N: every frame one limb in turn re-fitted from its N best\n"
+    "      re-posings (off by default)\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-eval", e); }
 

@@ -251,7 +251,8 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
 }
 
 std::set<std::string> TrackerFlags() {
-  return {"scenario", "variants", "iterations", "subsample", "body", "noise", "json"};
+  return {"scenario", "variants",     "iterations", "subsample",
+          "body",     "limb-recheck", "noise",      "json"};
 }
 
 namespace {
@@ -321,6 +322,14 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
       return MakeError("usage", "--body needs a .glb or .gltf path, or 'procedural'");
     o.body_path = *body == "procedural" ? "" : *body;
     o.body_for_all = true;
+  }
+  if (auto text = cl.Get("limb-recheck")) {
+    auto list = ParseCounts("limb-recheck", *text);
+    if (!list.ok()) return list.error();
+    if (list->size() != 1 || list->front() > 26)
+      return MakeError("usage",
+                       "--limb-recheck takes one whole number from 1 to 26, got '" + *text + "'");
+    o.tracker.limb_recheck_hypotheses = list->front();
   }
   if (auto noise = cl.Get("noise")) {
     if (*noise != "on" && *noise != "off")

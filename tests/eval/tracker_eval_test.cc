@@ -34,13 +34,14 @@ TEST(TrackerCli, Defaults) {
   EXPECT_EQ(r->options.subsample, std::vector<int>{2});
   EXPECT_TRUE(r->options.depth_noise);
   EXPECT_FALSE(r->options.body_for_all);
+  EXPECT_EQ(r->options.tracker.limb_recheck_hypotheses, 0);  // off unless asked
   EXPECT_FALSE(r->json_path);
 }
 
 TEST(TrackerCli, Flags) {
   const auto r =
       Parse({"--scenario", "turn-and-kick", "--variants", "normal,fast,near", "--iterations", "4,8",
-             "--subsample", "1,2,3", "--noise", "off", "--body", "x.glb"});
+             "--subsample", "1,2,3", "--noise", "off", "--body", "x.glb", "--limb-recheck", "3"});
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_EQ(r->options.scenarios, std::vector<std::string>{"turn-and-kick"});
   EXPECT_EQ(r->options.variants, (std::vector<std::string>{"normal", "fast", "near"}));
@@ -49,6 +50,7 @@ TEST(TrackerCli, Flags) {
   EXPECT_FALSE(r->options.depth_noise);
   EXPECT_EQ(r->options.body_path, "x.glb");
   EXPECT_TRUE(r->options.body_for_all);
+  EXPECT_EQ(r->options.tracker.limb_recheck_hypotheses, 3);
 }
 
 TEST(TrackerCli, BodyProceduralPlaysEveryScenarioOnTheProceduralBody) {
@@ -72,6 +74,9 @@ TEST(TrackerCli, BadInputIsRefused) {
   ExpectUsage({"--subsample", "2.5"}, "--subsample");
   ExpectUsage({"--noise", "maybe"}, "--noise must be on or off");
   ExpectUsage({"--body", ""}, "--body");
+  ExpectUsage({"--limb-recheck", "0"}, "--limb-recheck");
+  ExpectUsage({"--limb-recheck", "27"}, "--limb-recheck");
+  ExpectUsage({"--limb-recheck", "2,3"}, "--limb-recheck");
   const auto json = Parse({"--json", "/nonexistent-folder/out.json"});
   ASSERT_FALSE(json.ok());
   EXPECT_EQ(json.error().code, "io");
