@@ -169,6 +169,14 @@ class ArticulatedBody {
   std::vector<BodyCapsule> capsules_;
 };
 
+// How deep an arm's axis reaches into the trunk: the largest (r - d) over points along the
+// arm's capsule axes (upper arm and forearm) and the trunk's capsules (chest, abdomen, pelvis;
+// r their radius, d the point's distance to their axis), metres. Negative when every axis
+// point lies outside every trunk capsule: an arm hanging at the side or reaching across the
+// chest stays outside, an arm through the chest does not. A leg: 0 (its hip joint lies
+// inside the pelvis by construction).
+double ArmTrunkDepth(const ArticulatedBody& body, const PosedBody3& posed, Limb limb);
+
 // A rotation about a unit axis by an angle (exp map of angle * axis); identity for a zero
 // vector.
 Eigen::Matrix3d ExpRotation(const Eigen::Vector3d& omega);

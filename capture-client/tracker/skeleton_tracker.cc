@@ -44,7 +44,8 @@ void SkeletonTrackerOptions::Check() const {
   limb_search.Check();
   REENACT_CHECK(limb_recheck_hypotheses >= 0 && limb_recheck_gain >= 0 && limb_recheck_gain < 1,
                 "limb_recheck_hypotheses must be >= 0 and limb_recheck_gain in [0, 1)");
-  REENACT_CHECK(limb_recheck_max_other_move_m > 0, "limb_recheck_max_other_move_m must be > 0");
+  REENACT_CHECK(limb_recheck_max_other_move_m > 0 && limb_recheck_iterations >= 1,
+                "limb_recheck_max_other_move_m must be > 0 and limb_recheck_iterations >= 1");
   REENACT_CHECK(good_inlier_share > 0 && good_inlier_share <= 1, "good_inlier_share in (0, 1]");
   REENACT_CHECK(min_coverage > 0 && min_coverage <= 1, "min_coverage in (0, 1]");
   REENACT_CHECK(lost_after_frames >= 1 && recovery_iterations >= 1,
@@ -151,10 +152,14 @@ BodyFitResult SkeletonTracker::RecheckLimb(BodyFitResult fit, const BodyObservat
     if (l != static_cast<int>(limb))
       others.insert(others.end(), kLimbJoints[l], kLimbJoints[l] + 2);
   std::optional<BodyFitResult> best;
+  BodyFitOptions fo = options_.fit;
+  fo.iterations = options_.limb_recheck_iterations;
   for (const ArticulatedPose& start : starts) {
-    BodyFitResult r = FitBody(*body_, start, obs, options_.fit, options_.limits);
+    BodyFitResult r = FitBody(*body_, start, obs, fo, options_.limits);
     if (r.cost > bound || (best && r.cost >= best->cost)) continue;
-    bool kept = true;
+    bool kept =
+        ArmTrunkDepth(*body_, r.posed, limb) <=
+        std::max(options_.limb_recheck_trunk_depth_m, ArmTrunkDepth(*body_, fit.posed, limb));
     for (const Joint j : others)
       kept &= (r.posed.skeleton[j] - fit.posed.skeleton[j]).norm() <=
               options_.limb_recheck_max_other_move_m;

@@ -324,12 +324,17 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
     o.body_for_all = true;
   }
   if (auto text = cl.Get("limb-recheck")) {
-    auto list = ParseCounts("limb-recheck", *text);
-    if (!list.ok()) return list.error();
-    if (list->size() != 1 || list->front() > 26)
-      return MakeError("usage",
-                       "--limb-recheck takes one whole number from 1 to 26, got '" + *text + "'");
-    o.tracker.limb_recheck_hypotheses = list->front();
+    size_t used = 0;
+    int value = -1;
+    try {
+      value = std::stoi(*text, &used);
+    } catch (...) {
+      used = 0;
+    }
+    if (used == 0 || used != text->size() || value < 0 || value > 26)
+      return MakeError(
+          "usage", "--limb-recheck takes one whole number from 0 (off) to 26, got '" + *text + "'");
+    o.tracker.limb_recheck_hypotheses = value;
   }
   if (auto noise = cl.Get("noise")) {
     if (*noise != "on" && *noise != "off")

@@ -6,8 +6,8 @@
 //                        [--subsample K[,K...]] [--body FILE.glb|procedural]
 //                        [--limb-recheck N] [--noise on|off] [--json FILE]
 //
-// --limb-recheck N turns on the tracker's limb re-check with N hypotheses
-// (SkeletonTrackerOptions::limb_recheck_hypotheses; off by default, see docs/measurements.md).
+// --limb-recheck N: the tracker's limb re-check with N hypotheses, 0 = off
+// (SkeletonTrackerOptions::limb_recheck_hypotheses, default 0; see docs/measurements.md).
 // Per scenario, variant and speed setting (iterations x subsample), every sensor frame is
 // rendered with Kinect-like depth noise (on by default) and tracked, frames in order through
 // one tracker that is given the sensor pose and the world's up (as the synthetic source gives
@@ -121,7 +121,7 @@ std::set<std::string> TrackerFlags();
 
 // --body procedural: every scenario on the procedural body (body_path empty, body_for_all).
 // Errors (code "usage", naming the flag): empty lists or names, numbers that are not whole
-// numbers >= 1, an unknown variant, --limb-recheck other than one number from 1 to 26, --noise
+// numbers >= 1, an unknown variant, --limb-recheck other than one number from 0 to 26, --noise
 // other than on or off; ("io") an unwritable --json.
 Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& command_line);
 

@@ -34,7 +34,8 @@ TEST(TrackerCli, Defaults) {
   EXPECT_EQ(r->options.subsample, std::vector<int>{2});
   EXPECT_TRUE(r->options.depth_noise);
   EXPECT_FALSE(r->options.body_for_all);
-  EXPECT_EQ(r->options.tracker.limb_recheck_hypotheses, 0);  // off unless asked
+  EXPECT_EQ(r->options.tracker.limb_recheck_hypotheses,
+            capture::SkeletonTrackerOptions{}.limb_recheck_hypotheses);
   EXPECT_FALSE(r->json_path);
 }
 
@@ -51,6 +52,9 @@ TEST(TrackerCli, Flags) {
   EXPECT_EQ(r->options.body_path, "x.glb");
   EXPECT_TRUE(r->options.body_for_all);
   EXPECT_EQ(r->options.tracker.limb_recheck_hypotheses, 3);
+  const auto off = Parse({"--limb-recheck", "0"});
+  ASSERT_TRUE(off.ok()) << off.error().message;
+  EXPECT_EQ(off->options.tracker.limb_recheck_hypotheses, 0);
 }
 
 TEST(TrackerCli, BodyProceduralPlaysEveryScenarioOnTheProceduralBody) {
@@ -74,7 +78,8 @@ TEST(TrackerCli, BadInputIsRefused) {
   ExpectUsage({"--subsample", "2.5"}, "--subsample");
   ExpectUsage({"--noise", "maybe"}, "--noise must be on or off");
   ExpectUsage({"--body", ""}, "--body");
-  ExpectUsage({"--limb-recheck", "0"}, "--limb-recheck");
+  ExpectUsage({"--limb-recheck", "-1"}, "--limb-recheck");
+  ExpectUsage({"--limb-recheck", ""}, "--limb-recheck");
   ExpectUsage({"--limb-recheck", "27"}, "--limb-recheck");
   ExpectUsage({"--limb-recheck", "2,3"}, "--limb-recheck");
   const auto json = Parse({"--json", "/nonexistent-folder/out.json"});

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include "capture-client/tracker/body_fit.h"
@@ -73,6 +74,33 @@ TEST(ArticulatedBody, PoseFromSkeletonReproducesAPosedSkeleton) {
   const Skeleton target = body.Pose(SomePose()).skeleton;
   const Skeleton again = body.Pose(body.PoseFromSkeleton(target)).skeleton;
   EXPECT_LT(MeanJointError(target, again), 1e-6);
+}
+
+TEST(ArticulatedBody, ArmTrunkDepthTellsAnArmAtTheSideFromAnArmThroughTheChest) {
+  const BodyShape shape = BodyShape::FromHeight(1.75);
+  const ArticulatedBody body(shape);
+  ArticulatedPose pose;  // the rest pose: arms hanging straight down at the sides
+  // Each hanging arm's axis runs shoulder_half_width from the spine, the trunk capsules' axes
+  // torso_half_spread to either side of it: depth = radius - the gap between the axes.
+  const double side = shape.torso_radius - (shape.shoulder_half_width - shape.torso_half_spread);
+  ASSERT_LT(side, 0);
+  EXPECT_NEAR(ArmTrunkDepth(body, body.Pose(pose), Limb::kLeftArm), side, 1e-9);
+  EXPECT_NEAR(ArmTrunkDepth(body, body.Pose(pose), Limb::kRightArm), side, 1e-9);
+  EXPECT_EQ(ArmTrunkDepth(body, body.Pose(pose), Limb::kLeftLeg), 0);
+  EXPECT_EQ(ArmTrunkDepth(body, body.Pose(pose), Limb::kRightLeg), 0);
+  // The left upper arm pointing straight across to the right: at shoulder height it passes
+  // shoulder_drop - torso_radius above the chest capsules' top ends, i.e. shoulder_drop deep
+  // where it crosses their axes (axis samples every eighth of the bone: within half of that).
+  pose.local[static_cast<int>(BodySegment::kLeftUpperArm)] =
+      ExpRotation(Eigen::Vector3d(-kPi / 2, 0, 0));
+  const double across = ArmTrunkDepth(body, body.Pose(pose), Limb::kLeftArm);
+  EXPECT_GT(across, 0.5 * shape.shoulder_drop);
+  EXPECT_LE(across, shape.shoulder_drop + 1e-9);
+  // The right arm is where it was; and the depth does not depend on where the body stands.
+  EXPECT_NEAR(ArmTrunkDepth(body, body.Pose(pose), Limb::kRightArm), side, 1e-9);
+  pose.root_translation = Eigen::Vector3d(0.4, -0.2, 3.1);
+  pose.root_rotation = ExpRotation(Eigen::Vector3d(0.3, -1.2, 0.5));
+  EXPECT_NEAR(ArmTrunkDepth(body, body.Pose(pose), Limb::kLeftArm), across, 1e-9);
 }
 
 TEST(ArticulatedBody, StepsAreClampedToTheJointLimits) {
@@ -174,6 +202,15 @@ TEST(BodyFit, RecoversAKnownPoseFromItsOwnSurface) {
   EXPECT_NEAR(fit.rms_m, 0, 0.005);
 }
 
+// The distance of a pose's left hand from the truth's, metres.
+std::function<double(const ArticulatedPose&)> LeftHandError(const ArticulatedBody& body,
+                                                            const ArticulatedPose& truth) {
+  const Eigen::Vector3d hand = body.Pose(truth).skeleton[Joint::kLeftHand];
+  return [&body, hand](const ArticulatedPose& p) {
+    return (body.Pose(p).skeleton[Joint::kLeftHand] - hand).norm();
+  };
+}
+
 TEST(LimbSearch, FindsAnArmRaisedOverheadThatTheLocalFitCannotReach) {
   const ArticulatedBody body(BodyShape::FromHeight(1.75));
   ArticulatedPose truth = SomePose();
@@ -186,10 +223,7 @@ TEST(LimbSearch, FindsAnArmRaisedOverheadThatTheLocalFitCannotReach) {
   const BodyObservation obs = SurfaceObservation(body, truth);
   BodyFitOptions options;
   options.silhouette_weight = 0;  // points only
-  const Skeleton t = body.Pose(truth).skeleton;
-  const auto hand_error = [&](const ArticulatedPose& p) {
-    return (body.Pose(p).skeleton[Joint::kLeftHand] - t[Joint::kLeftHand]).norm();
-  };
+  const auto hand_error = LeftHandError(body, truth);
   // Local fitting alone: the raised arm's points lie beyond outlier_m of the hanging arm.
   EXPECT_GT(hand_error(FitBody(body, start, obs, options).pose), 0.5);
   ArticulatedPose searched = start;
@@ -213,10 +247,7 @@ TEST(LimbSearch, RankedHypothesesBringBackAnArmFromTheWrongSideOfTheBody) {
   const BodyObservation obs = SurfaceObservation(body, truth);
   BodyFitOptions options;
   options.silhouette_weight = 0;  // points only
-  const Skeleton t = body.Pose(truth).skeleton;
-  const auto hand_error = [&](const ArticulatedPose& p) {
-    return (body.Pose(p).skeleton[Joint::kLeftHand] - t[Joint::kLeftHand]).norm();
-  };
+  const auto hand_error = LeftHandError(body, truth);
   const BodyFitResult local = FitBody(body, start, obs, options);
   EXPECT_GT(hand_error(local.pose), 0.3);  // the local fit alone does not bring it back
 
