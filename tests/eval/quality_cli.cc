@@ -58,8 +58,8 @@ fs::path NearestExisting(const fs::path& path) {
 }  // namespace
 
 std::set<std::string> QualityFlags() {
-  return {"scenario", "body",   "methods",     "views",          "step",    "json",
-          "markdown", "images", "image-pairs", "skeleton-noise", "lighting"};
+  return {"scenario", "body",   "methods",     "views",          "step",      "json",
+          "markdown", "images", "image-pairs", "skeleton-noise", "skeletons", "lighting"};
 }
 
 Status CheckWritableFile(const std::string& flag, const std::string& path) {
@@ -132,6 +132,14 @@ Expected<QualityCommand> ParseQualityCommand(const CommandLine& cl) {
     return MakeError("usage", "--skeleton-noise must be metres in [0, 1] (e.g. 0.02), got " +
                                   std::to_string(*noise));
   o.skeleton_noise_m = *noise;
+  const std::string skeletons = cl.GetOr("skeletons", "truth");
+  if (skeletons != "truth" && skeletons != "track")
+    return MakeError("usage", "--skeletons must be truth or track, got '" + skeletons + "'");
+  o.tracked_skeletons = skeletons == "track";
+  if (o.tracked_skeletons && o.skeleton_noise_m > 0)
+    return MakeError("usage",
+                     "--skeletons track and --skeleton-noise exclude each other (the tracker's "
+                     "skeletons carry their own error)");
   const std::string lighting = cl.GetOr("lighting", "scene");
   if (lighting != "scene" && lighting != "flat")
     return MakeError("usage", "--lighting must be scene or flat, got '" + lighting + "'");

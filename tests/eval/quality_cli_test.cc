@@ -159,6 +159,23 @@ TEST(QualityCli, RefusesSkeletonNoiseThatIsNotANumber) {
   ExpectError({"--skeleton-noise", "lots"}, "usage", "skeleton-noise");
 }
 
+TEST(QualityCli, ParsesTrackedSkeletons) {
+  const auto r = Parse({"--skeletons", "track"});
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_TRUE(r->options.tracked_skeletons);
+  const auto d = Parse({});
+  ASSERT_TRUE(d.ok()) << d.error().message;
+  EXPECT_FALSE(d->options.tracked_skeletons);
+}
+
+TEST(QualityCli, RefusesAnUnknownSkeletonSource) {
+  ExpectError({"--skeletons", "nite"}, "usage", "--skeletons must be truth or track");
+}
+
+TEST(QualityCli, RefusesTrackedSkeletonsWithNoise) {
+  ExpectError({"--skeletons", "track", "--skeleton-noise", "0.01"}, "usage", "exclude each other");
+}
+
 TEST(QualityCli, ParsesLighting) {
   const auto flat = Parse({"--lighting", "flat"});
   ASSERT_TRUE(flat.ok()) << flat.error().message;

@@ -15,6 +15,7 @@
 #include "capture-client/record/clip_recorder.h"
 #include "capture-client/source/synthetic_source.h"
 #include "capture-client/synthetic/room.h"
+#include "capture-client/tracker/tracker_skeleton_source.h"
 #include "common/error/check.h"
 #include "common/estimate/median.h"
 #include "proto/clip/clip_directory.h"
@@ -44,11 +45,17 @@ Expected<OpenedScenario> OpenScenario(const QualityOptions& options) {
 
 // Records the source into a clip directory under `dir` and reads it back, as a viewer would.
 // With noise_m > 0 the recorder takes the scene's true skeletons with Gaussian jitter added
-// (QualityOptions::skeleton_noise_m) instead of the source's own.
+// (QualityOptions::skeleton_noise_m) instead of the source's own; with `tracked`, our depth
+// tracker's (QualityOptions::tracked_skeletons).
 Expected<viewer::Reenactment> CaptureClip(capture::FrameSource& source,
                                           const capture::SyntheticScene& scene, double noise_m,
-                                          const std::filesystem::path& dir) {
+                                          bool tracked, const std::filesystem::path& dir) {
   capture::RecordOptions options;
+  std::optional<capture::TrackerSkeletonSource> tracker;
+  if (tracked) {
+    tracker.emplace(source.info());
+    options.frame_skeletons = tracker->Function();
+  }
   if (noise_m > 0)
     options.skeletons = [&scene, noise_m](int64_t index, double) -> std::optional<Skeleton> {
       if (index < 0 || index >= scene.frame_count()) return std::nullopt;
@@ -62,6 +69,13 @@ Expected<viewer::Reenactment> CaptureClip(capture::FrameSource& source,
     };
   auto recorded = capture::RecordClip(source, dir, options);
   if (!recorded.ok()) return recorded.error();
+  if (tracker && tracker->stats().tracked != scene.frame_count())
+    return MakeError("tracking", "the depth tracker gave a skeleton on " +
+                                     std::to_string(tracker->stats().tracked) + " of " +
+                                     std::to_string(scene.frame_count()) + " frames (" +
+                                     tracker->stats().Describe() +
+                                     "); --skeletons track needs a scenario it tracks from the "
+                                     "first frame to the last, such as the procedural body's");
   auto clip = proto::ReadClipDirectory(dir);
   if (!clip.ok()) return clip.error();
   std::vector<proto::ClipFrame> frames;
@@ -95,6 +109,8 @@ void QualityOptions::Check() const {
   REENACT_CHECK(frame_step >= 1, "frame_step must be >= 1");
   REENACT_CHECK(std::isfinite(skeleton_noise_m) && skeleton_noise_m >= 0,
                 "skeleton_noise_m must be finite and >= 0");
+  REENACT_CHECK(!(tracked_skeletons && skeleton_noise_m > 0),
+                "tracked_skeletons and skeleton_noise_m exclude each other");
   REENACT_CHECK(width >= 16 && height >= 16, "output must be at least 16x16");
   REENACT_CHECK(!methods.empty() && !views_deg.empty(), "need a method and a view");
   for (double v : views_deg) REENACT_CHECK(std::isfinite(v), "view angles must be finite");
@@ -152,7 +168,8 @@ Expected<QualityHarness> QualityHarness::Create(const QualityOptions& options) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("reenact-eval-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
-  auto clip = CaptureClip(*opened->source, opened->scene, options.skeleton_noise_m, dir / "clip");
+  auto clip = CaptureClip(*opened->source, opened->scene, options.skeleton_noise_m,
+                          options.tracked_skeletons, dir / "clip");
   std::filesystem::remove_all(dir);
   if (!clip.ok()) return clip.error();
   if (clip->frame_count() != opened->scene.frame_count())

@@ -56,6 +56,11 @@ struct QualityOptions {
   // it pushes past the bone-length check are flagged by the recorder as for real ones. The
   // ground truth stays exact.
   double skeleton_noise_m = 0;
+  // The recorded skeletons from our depth tracker (capture-client/tracker/) reading each
+  // rendered depth frame, as a sensor without NiTE records them, instead of the scene's exact
+  // ones; the ground truth stays exact. Not with skeleton_noise_m. The tracker must give a
+  // skeleton on every frame (the recorder stores only frames with one), else Create fails.
+  bool tracked_skeletons = false;
   // The subject lit flat (SyntheticBodySpec::ambient 1, no directional light) in the recording
   // and in the ground truth alike: no shading for texturing to carry from one pose to
   // another, so what stays is geometry and texture choice. Default: the scene's light.

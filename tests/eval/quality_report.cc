@@ -123,6 +123,7 @@ std::string QualityCommandLine(const QualityOptions& options) {
   line << " --step " << options.frame_step;
   if (options.skeleton_noise_m > 0)
     line << " --skeleton-noise " << Number(options.skeleton_noise_m);
+  if (options.tracked_skeletons) line << " --skeletons track";
   if (options.flat_lighting) line << " --lighting flat";
   if (!options.image_dir.empty() && !options.image_pairs.empty()) {
     line << " --images " << options.image_dir << " --image-pairs ";
@@ -163,6 +164,9 @@ std::string QualityMarkdown(const QualityOptions& options, const QualityRun& run
                                             Fixed(options.skeleton_noise_m * 100, 1) +
                                             " cm per axis on every joint (the ground truth exact)"
                                       : std::string())
+     << (options.tracked_skeletons
+             ? ", the recorded skeletons from our depth tracker (the ground truth exact)"
+             : std::string())
      << (options.flat_lighting ? ", the subject lit flat (no shading) in recording and truth"
                                : std::string())
      << "; " << EveryKth(options.frame_step) << " is reenacted at " << options.width << "x"

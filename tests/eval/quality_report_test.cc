@@ -72,6 +72,18 @@ TEST(QualityReport, MarkdownHasTheTableTheRulesAndTheCommand) {
   EXPECT_EQ(md.find("## Pictures"), std::string::npos);  // none taken
 }
 
+TEST(QualityReport, MarkdownSaysWhereTheSkeletonsCameFrom) {
+  QualityOptions options;
+  options.tracked_skeletons = true;
+  const std::string md = QualityMarkdown(options, TwoRows(), "docs/quality.md", "MACHINE");
+  EXPECT_NE(md.find("--step 10 --skeletons track"), std::string::npos) << md;
+  EXPECT_NE(md.find("the recorded skeletons from our depth tracker"), std::string::npos) << md;
+  options.tracked_skeletons = false;
+  const std::string exact = QualityMarkdown(options, TwoRows(), "docs/quality.md", "MACHINE");
+  EXPECT_EQ(exact.find("--skeletons"), std::string::npos);
+  EXPECT_EQ(exact.find("depth tracker"), std::string::npos);
+}
+
 TEST(QualityReport, PictureLinksAreRelativeToTheDocument) {
   QualityRun run = TwoRows();
   run.images.push_back({"thesis", {90, 60}, "docs/quality/thesis_f090_v060.png", {}, 0.1});
