@@ -56,8 +56,9 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
     if (c.segment == upper || c.segment == lower) {
       const bool is_lower = c.segment == lower;
       local.push_back({is_lower, c.a, c.b, c.radius});
-      const Eigen::Vector3d base = is_lower ? lower_offset : Eigen::Vector3d::Zero();
-      reach = std::max(reach, std::max((base + c.a).norm(), (base + c.b).norm()) + c.radius);
+      // The lower segment turns about its joint: the joint's offset plus the point's.
+      const double base = is_lower ? lower_offset.norm() : 0.0;
+      reach = std::max(reach, base + std::max(c.a.norm(), c.b.norm()) + c.radius);
       continue;
     }
     const Eigen::Isometry3d& t = posed.sensor_from_segment[static_cast<int>(c.segment)];
