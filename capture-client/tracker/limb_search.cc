@@ -25,11 +25,26 @@ double AxisDistance(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
   return (p - a - t * ab).norm();
 }
 
+// The upper segment's directions: a cube's faces, edges and corners.
+constexpr int kDirectionCount = 26;
+
+// One hypothesis: the limb's two joints (after clamping to the limits) and its cost.
 struct ScoredHypothesis {
   double cost;
   int direction;  // index of the upper segment's direction
-  ArticulatedPose pose;
+  Eigen::Matrix3d upper_local;
+  double hinge_angle;
 };
+
+// `pose` with the limb posed as `h` (as scored: every joint clamped to the limits).
+ArticulatedPose WithLimb(const ArticulatedPose& pose, Limb limb, const ScoredHypothesis& h,
+                         const JointLimits& limits) {
+  ArticulatedPose out = pose;
+  out.local[static_cast<int>(LimbUpper(limb))] = h.upper_local;
+  out.hinge_angle[static_cast<int>(LimbLower(limb))] = h.hinge_angle;
+  ArticulatedBody::Clamp(&out, limits);
+  return out;
+}
 
 // The search's cost (see the header) of every hypothesis for `limb` at `pose`, and of `pose`
 // itself (*current).
@@ -113,6 +128,7 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
 
   *current = cost_of(pose);
   std::vector<ScoredHypothesis> scored;
+  scored.reserve(kDirectionCount * 9);
   int direction = 0;
   for (int i = -1; i <= 1; ++i)
     for (int j = -1; j <= 1; ++j)
@@ -135,7 +151,9 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
             candidate.local[static_cast<int>(upper)] = rotation;
             candidate.hinge_angle[static_cast<int>(lower)] = angle * std::numbers::pi / 180;
             ArticulatedBody::Clamp(&candidate, limits);
-            scored.push_back({cost_of(candidate), direction, std::move(candidate)});
+            scored.push_back({cost_of(candidate), direction,
+                              candidate.local[static_cast<int>(upper)],
+                              candidate.hinge_angle[static_cast<int>(lower)]});
           }
         ++direction;
       }
@@ -162,7 +180,7 @@ int SearchLimbs(const ArticulatedBody& body, const BodyObservation& obs, const B
         scored.begin(), scored.end(),
         [](const ScoredHypothesis& a, const ScoredHypothesis& b) { return a.cost < b.cost; });
     if (best != scored.end() && best->cost < (1 - options.min_gain) * current) {
-      *pose = best->pose;
+      *pose = WithLimb(*pose, static_cast<Limb>(l), *best, limits);
       ++changed;
     }
   }
@@ -185,12 +203,12 @@ std::vector<ArticulatedPose> RankLimbHypotheses(const ArticulatedBody& body,
   std::stable_sort(
       scored.begin(), scored.end(),
       [](const ScoredHypothesis& a, const ScoredHypothesis& b) { return a.cost < b.cost; });
-  std::vector<bool> used(26, false);
-  for (ScoredHypothesis& h : scored) {
+  std::vector<bool> used(kDirectionCount, false);
+  for (const ScoredHypothesis& h : scored) {
     if (static_cast<int>(ranked.size()) >= count) break;
     if (used[h.direction]) continue;
     used[h.direction] = true;
-    ranked.push_back(std::move(h.pose));
+    ranked.push_back(WithLimb(pose, limb, h, limits));
   }
   return ranked;
 }

@@ -151,15 +151,15 @@ BodyFitResult SkeletonTracker::RecheckLimb(BodyFitResult fit, const BodyObservat
   for (int l = 0; l < kLimbCount; ++l)
     if (l != static_cast<int>(limb))
       others.insert(others.end(), kLimbJoints[l], kLimbJoints[l] + 2);
+  const double depth_bound =
+      std::max(options_.limb_recheck_trunk_depth_m, ArmTrunkDepth(*body_, fit.posed, limb));
   std::optional<BodyFitResult> best;
   BodyFitOptions fo = options_.fit;
   fo.iterations = options_.limb_recheck_iterations;
   for (const ArticulatedPose& start : starts) {
     BodyFitResult r = FitBody(*body_, start, obs, fo, options_.limits);
     if (r.cost > bound || (best && r.cost >= best->cost)) continue;
-    bool kept =
-        ArmTrunkDepth(*body_, r.posed, limb) <=
-        std::max(options_.limb_recheck_trunk_depth_m, ArmTrunkDepth(*body_, fit.posed, limb));
+    bool kept = ArmTrunkDepth(*body_, r.posed, limb) <= depth_bound;
     for (const Joint j : others)
       kept &= (r.posed.skeleton[j] - fit.posed.skeleton[j]).norm() <=
               options_.limb_recheck_max_other_move_m;
