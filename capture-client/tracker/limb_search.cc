@@ -34,6 +34,7 @@ struct ScoredHypothesis {
   int direction;  // index of the upper segment's direction
   Eigen::Matrix3d upper_local;
   double hinge_angle;
+  int lost_taken;  // lost points (see ScoreLimbHypotheses) within outlier_m of the limb
 };
 
 // `pose` with the limb posed as `h` (as scored: every joint clamped to the limits).
@@ -47,11 +48,12 @@ ArticulatedPose WithLimb(const ArticulatedPose& pose, Limb limb, const ScoredHyp
 }
 
 // The search's cost (see the header) of every hypothesis for `limb` at `pose`, and of `pose`
-// itself (*current).
+// itself (*current). *lost: the points `pose` leaves beyond outlier_m of every capsule that
+// some posing of the limb can reach.
 std::vector<ScoredHypothesis> ScoreLimbHypotheses(
     const ArticulatedBody& body, const BodyObservation& obs, const BodyFitOptions& fit,
     const JointLimits& limits, const LimbSearchOptions& options, const ArticulatedPose& pose,
-    Limb limb, double* current) {
+    Limb limb, double* current, int* lost = nullptr) {
   const S upper = LimbUpper(limb), lower = LimbLower(limb);
   const double delta = fit.huber_m;
   const double cap_cost = HuberCost(options.cap_m, delta);
@@ -93,6 +95,17 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
   }
 
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> axes(local.size());
+  // Residual of a point to the limb as last posed by cost_of.
+  auto limb_residual = [&](const Eigen::Vector3d& p) {
+    double e = std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k < axes.size(); ++k)
+      e = std::min(e, AxisDistance(axes[k].first, axes[k].second, p) - local[k].radius);
+    return e;
+  };
+  // is_lost[j] for active[j]: beyond outlier_m of the held body and of the limb at `pose`;
+  // taken: how many of them the last posing brought within outlier_m of the limb.
+  std::vector<char> is_lost(active.size(), 0);
+  int taken = 0;
   auto cost_of = [&](const ArticulatedPose& candidate) {
     // Pose only this limb: upper rotation from the parent, lower by the hinge.
     Eigen::Isometry3d tu = Eigen::Isometry3d::Identity();
@@ -109,12 +122,12 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
       axes[k] = {t * local[k].a, t * local[k].b};
     }
     double cost = fixed_cost;
-    for (const int i : active) {
-      double e = rest[i];
-      for (size_t k = 0; k < axes.size(); ++k)
-        e = std::min(e,
-                     AxisDistance(axes[k].first, axes[k].second, obs.points[i]) - local[k].radius);
-      cost += std::min(HuberCost(e, delta), cap_cost);
+    taken = 0;
+    for (size_t j = 0; j < active.size(); ++j) {
+      const int i = active[j];
+      const double e_limb = limb_residual(obs.points[i]);
+      taken += is_lost[j] && e_limb <= fit.outlier_m;
+      cost += std::min(HuberCost(std::min(rest[i], e_limb), delta), cap_cost);
     }
     for (const auto& [a, b] : axes)
       for (int i = 0; i < m; ++i) {
@@ -127,6 +140,13 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
   };
 
   *current = cost_of(pose);
+  int n_lost = 0;
+  for (size_t j = 0; j < active.size(); ++j) {
+    const int i = active[j];
+    if (rest[i] > fit.outlier_m && limb_residual(obs.points[i]) > fit.outlier_m)
+      is_lost[j] = 1, ++n_lost;
+  }
+  if (lost) *lost = n_lost;
   std::vector<ScoredHypothesis> scored;
   scored.reserve(kDirectionCount * 9);
   int direction = 0;
@@ -151,9 +171,9 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
             candidate.local[static_cast<int>(upper)] = rotation;
             candidate.hinge_angle[static_cast<int>(lower)] = angle * std::numbers::pi / 180;
             ArticulatedBody::Clamp(&candidate, limits);
-            scored.push_back({cost_of(candidate), direction,
-                              candidate.local[static_cast<int>(upper)],
-                              candidate.hinge_angle[static_cast<int>(lower)]});
+            const double cost = cost_of(candidate);
+            scored.push_back({cost, direction, candidate.local[static_cast<int>(upper)],
+                              candidate.hinge_angle[static_cast<int>(lower)], taken});
           }
         ++direction;
       }
@@ -164,6 +184,7 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
 
 void LimbSearchOptions::Check() const {
   REENACT_CHECK(cap_m > 0 && min_gain >= 0 && min_gain < 1, "cap_m > 0, 0 <= min_gain < 1");
+  REENACT_CHECK(min_lost_share >= 0 && min_lost_share <= 1, "min_lost_share in [0, 1]");
 }
 
 int SearchLimbs(const ArticulatedBody& body, const BodyObservation& obs, const BodyFitOptions& fit,
@@ -172,17 +193,31 @@ int SearchLimbs(const ArticulatedBody& body, const BodyObservation& obs, const B
   options.Check();
   if (obs.points.empty()) return 0;
   int changed = 0;
-  for (int l = 0; l < kLimbCount; ++l) {
-    double current = 0;
-    const std::vector<ScoredHypothesis> scored =
-        ScoreLimbHypotheses(body, obs, fit, limits, options, *pose, static_cast<Limb>(l), &current);
-    const auto best = std::min_element(
-        scored.begin(), scored.end(),
-        [](const ScoredHypothesis& a, const ScoredHypothesis& b) { return a.cost < b.cost; });
-    if (best != scored.end() && best->cost < (1 - options.min_gain) * current) {
-      *pose = WithLimb(*pose, static_cast<Limb>(l), *best, limits);
-      ++changed;
+  std::array<bool, kLimbCount> moved{};
+  for (int round = 0; round < kLimbCount; ++round) {
+    int pick = -1;
+    ScoredHypothesis pick_h{};
+    double pick_gain = 0;
+    for (int l = 0; l < kLimbCount; ++l) {
+      if (moved[l]) continue;
+      double current = 0;
+      int lost = 0;
+      const std::vector<ScoredHypothesis> scored = ScoreLimbHypotheses(
+          body, obs, fit, limits, options, *pose, static_cast<Limb>(l), &current, &lost);
+      if (lost <= options.min_lost_share * static_cast<double>(obs.points.size())) continue;
+      const ScoredHypothesis* best = nullptr;
+      for (const ScoredHypothesis& h : scored)
+        if (2 * h.lost_taken >= lost && (!best || h.cost < best->cost)) best = &h;
+      if (!best || best->cost >= (1 - options.min_gain) * current) continue;
+      const double gain = current - best->cost;
+      if (pick < 0 || best->lost_taken > pick_h.lost_taken ||
+          (best->lost_taken == pick_h.lost_taken && gain > pick_gain))
+        pick = l, pick_h = *best, pick_gain = gain;
     }
+    if (pick < 0) break;
+    *pose = WithLimb(*pose, static_cast<Limb>(pick), pick_h, limits);
+    moved[pick] = true;
+    ++changed;
   }
   return changed;
 }

@@ -9,9 +9,20 @@
 // hypothesis's cost is the fit's cost (body_fit.h) with every data point's residual the
 // smaller of its residual to the held body and to the limb, capped at cap_m (so points of
 // other objects cost the same for every hypothesis), plus the limb's silhouette/free-space
-// samples. The cheapest hypothesis replaces the limb's pose when it costs at least min_gain
-// (relative) less than the current pose. Limbs are searched in turn (left arm, right arm,
-// left leg, right leg), each against the body as re-posed so far.
+// samples.
+//
+// The search is for a limb the model lost, so only lost points justify re-posing one: the
+// points beyond outlier_m of every capsule. A limb is searched when more than min_lost_share
+// of the points are lost within its reach, and only its hypotheses that take at least half of
+// those (bring them within outlier_m of the limb) count; the cheapest of them is the limb's
+// candidate when it costs at least min_gain (relative) less than the current pose. Of the
+// limbs' candidates, the one taking the most lost points (then: the larger decrease) is
+// applied, the lost points are found again, and the other limbs follow in the same way.
+// Without this rule the cheapest hypothesis anywhere won, and the limb searched first took
+// it: on a skinned body whose head is larger than the model's head capsule (its points within
+// outlier_m, explained poorly), the left arm was raised beside the head for a lower cost while
+// the lost points were the right hand's (CesiumMan turn-and-kick, 40 frames with the left
+// hand 85-94 cm off).
 //
 // The same hypotheses, ranked (RankLimbHypotheses), start the tracker's limb re-check: a
 // limb that lies on the wrong side of the body has its points explained, worse, by the torso,
@@ -30,6 +41,7 @@ namespace reenact::capture {
 struct LimbSearchOptions {
   double cap_m = 0.25;     // residual cap, > 0
   double min_gain = 0.02;  // relative cost decrease required, [0, 1)
+  double min_lost_share = 0.005;  // share of the points lost within a limb's reach, [0, 1]
 
   void Check() const;
 };

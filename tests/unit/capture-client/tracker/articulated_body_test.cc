@@ -12,6 +12,7 @@
 
 #include "capture-client/tracker/body_fit.h"
 #include "capture-client/tracker/limb_search.h"
+#include "common/error/check.h"
 
 namespace reenact::capture {
 namespace {
@@ -211,15 +212,24 @@ std::function<double(const ArticulatedPose&)> LeftHandError(const ArticulatedBod
   };
 }
 
+// SomePose with one arm straight up (its bone along the chest's +z) as the truth, and the
+// start with that arm hanging.
+struct LostArm {
+  ArticulatedPose truth, start;
+};
+LostArm ArmRaisedOverhead(Limb arm) {
+  LostArm a{SomePose(), {}};
+  const int upper = static_cast<int>(LimbUpper(arm));
+  a.truth.local[upper] = ExpRotation(Eigen::Vector3d(kPi, 0, 0));
+  a.truth.hinge_angle[static_cast<int>(LimbLower(arm))] = 0;
+  a.start = a.truth;
+  a.start.local[upper] = Eigen::Matrix3d::Identity();
+  return a;
+}
+
 TEST(LimbSearch, FindsAnArmRaisedOverheadThatTheLocalFitCannotReach) {
   const ArticulatedBody body(BodyShape::FromHeight(1.75));
-  ArticulatedPose truth = SomePose();
-  // The left arm straight up (its bone along the chest's +z), the start with it hanging.
-  const int arm = static_cast<int>(BodySegment::kLeftUpperArm);
-  truth.local[arm] = ExpRotation(Eigen::Vector3d(kPi, 0, 0));
-  truth.hinge_angle[static_cast<int>(BodySegment::kLeftForearm)] = 0;
-  ArticulatedPose start = truth;
-  start.local[arm] = Eigen::Matrix3d::Identity();
+  const auto [truth, start] = ArmRaisedOverhead(Limb::kLeftArm);
   const BodyObservation obs = SurfaceObservation(body, truth);
   BodyFitOptions options;
   options.silhouette_weight = 0;  // points only
@@ -231,6 +241,48 @@ TEST(LimbSearch, FindsAnArmRaisedOverheadThatTheLocalFitCannotReach) {
   // The search's nearest hypothesis (26 directions) is at most 22.5 degrees off; the fit
   // from there converges on exact data.
   EXPECT_LT(hand_error(FitBody(body, searched, obs, options).pose), 0.01);
+}
+
+TEST(LimbSearch, TakesTheLostPointsNotThoseOfAHeadLargerThanTheModels) {
+  // The subject's head is 1.6 times the model's (a cartoon figure's, or a hood): its points lie
+  // 6 cm outside the model's head capsule, within outlier_m, so the model explains them,
+  // poorly. The right arm is raised overhead and the model's hangs: its points are lost.
+  BodyShape subject_shape = BodyShape::FromHeight(1.75);
+  subject_shape.head_radius *= 1.6;
+  const ArticulatedBody subject(subject_shape);
+  const ArticulatedBody body(BodyShape::FromHeight(1.75));
+  const auto [truth, start] = ArmRaisedOverhead(Limb::kRightArm);
+  const int left = static_cast<int>(BodySegment::kLeftUpperArm);
+  const BodyObservation obs = SurfaceObservation(subject, truth);
+  BodyFitOptions options;
+  options.silhouette_weight = 0;  // points only
+  const Eigen::Vector3d right_hand = body.Pose(truth).skeleton[Joint::kRightHand];
+  const Eigen::Vector3d left_hand = body.Pose(truth).skeleton[Joint::kLeftHand];
+
+  // Only the right arm is re-posed, onto its lost points; the left arm, whose data the model
+  // explains, is not moved to take the head's (a hypothesis beside the head costs less).
+  ArticulatedPose searched = start;
+  EXPECT_EQ(SearchLimbs(body, obs, options, JointLimits{}, LimbSearchOptions{}, &searched), 1);
+  EXPECT_LT((searched.local[left] - start.local[left]).norm(), 1e-12);
+  const PosedBody3 fitted = body.Pose(FitBody(body, searched, obs, options).pose);
+  EXPECT_LT((fitted.skeleton[Joint::kRightHand] - right_hand).norm(), 0.05);
+  EXPECT_LT((fitted.skeleton[Joint::kLeftHand] - left_hand).norm(), 0.05);
+
+  // Nothing lost (the truth's arms, the large head alone): nothing is re-posed.
+  ArticulatedPose at_truth = truth;
+  EXPECT_EQ(SearchLimbs(body, obs, options, JointLimits{}, LimbSearchOptions{}, &at_truth), 0);
+}
+
+TEST(LimbSearch, BadOptionsAreABug) {
+  LimbSearchOptions o;
+  EXPECT_NO_THROW(o.Check());
+  o.min_lost_share = -0.1;
+  EXPECT_THROW(o.Check(), CheckError);
+  o.min_lost_share = 1.5;
+  EXPECT_THROW(o.Check(), CheckError);
+  o = {};
+  o.min_gain = 1;
+  EXPECT_THROW(o.Check(), CheckError);
 }
 
 TEST(LimbSearch, RankedHypothesesBringBackAnArmFromTheWrongSideOfTheBody) {
