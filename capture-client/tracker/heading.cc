@@ -1,5 +1,6 @@
 #include "capture-client/tracker/heading.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -61,24 +62,40 @@ ArticulatedPose TurnedTo(const ArticulatedPose& pose, const Eigen::Vector3d& up,
   return out;
 }
 
-TravelDirection::TravelDirection(int window, double min_distance_m)
-    : window_(window), min_distance_m_(min_distance_m) {
-  REENACT_CHECK(window >= 2, "window must be >= 2");
-  REENACT_CHECK(min_distance_m > 0, "min_distance_m must be > 0");
+void TravelOptions::Check() const {
+  REENACT_CHECK(window_frames >= 2 && max_window_frames >= window_frames,
+                "travel window_frames must be >= 2 and max_window_frames >= window_frames");
+  REENACT_CHECK(min_distance_m > 0, "travel min_distance_m must be > 0");
+  REENACT_CHECK(min_half_share >= 0 && min_half_share <= 0.5, "travel min_half_share in [0, 0.5]");
+}
+
+TravelDirection::TravelDirection(const TravelOptions& options) : options_(options) {
+  options.Check();
 }
 
 void TravelDirection::Add(const Eigen::Vector3d& root) {
   path_.push_back(root);
-  while (static_cast<int>(path_.size()) > window_) path_.pop_front();
+  while (static_cast<int>(path_.size()) > options_.max_window_frames) path_.pop_front();
 }
 
 std::optional<Eigen::Vector3d> TravelDirection::Direction(const Eigen::Vector3d& up) const {
   if (path_.size() < 2 || !(up.norm() > 1e-9)) return std::nullopt;
   const Eigen::Vector3d u = up.normalized();
-  Eigen::Vector3d d = path_.back() - path_.front();
-  d -= d.dot(u) * u;
-  if (!(d.norm() >= min_distance_m_)) return std::nullopt;
-  return d.normalized();
+  const auto across = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+    const Eigen::Vector3d d = to - from;
+    return Eigen::Vector3d(d - d.dot(u) * u);
+  };
+  const int last = static_cast<int>(path_.size()) - 1;
+  int first = std::max(0, last + 1 - options_.window_frames);
+  while (first > 0 && across(path_[first], path_[last]).norm() < options_.min_distance_m) --first;
+  const Eigen::Vector3d d = across(path_[first], path_[last]);
+  const double distance = d.norm();
+  if (!(distance >= options_.min_distance_m)) return std::nullopt;
+  const Eigen::Vector3d& middle = path_[(first + last + 1) / 2];
+  const double shorter_half =
+      std::min(across(path_[first], middle).norm(), across(middle, path_[last]).norm());
+  if (shorter_half < options_.min_half_share * distance) return std::nullopt;
+  return d / distance;
 }
 
 }  // namespace reenact::capture

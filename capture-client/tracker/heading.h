@@ -6,9 +6,15 @@
 //    sensor"; each one an upright start pose (UprightPose) that the tracker fits, the fit
 //    residual choosing among them.
 //  - Travel: a walking subject faces the way it goes. TravelDirection keeps the root's path
-//    over a window of frames; once the root has moved at least min_distance_m across the floor
-//    within the window, its direction (first to last position, projected on the floor) is the
-//    front. The tracker uses it to settle the front/back ambiguity: a fitted forward more than
+//    and takes its direction across the floor over the last window_frames frames, or over as
+//    many more (up to max_window_frames) as a slow walker needs to cover min_distance_m; none
+//    while the root has not covered it. The walk must be steady: each half of the path (first
+//    to middle position, middle to last) covers at least min_half_share of the distance. A
+//    subject turning on the spot and then stepping back or aside does not face its
+//    displacement (the CMU walk 131_01 does, frames 100-119); a curved walk does, nearly
+//    (walk-handheld's circle), so the path need not be straight. A slow walk covers 0.3 m in
+//    50 frames rather than 20 (the CMU walk 131_02 on CesiumMan, 11 cm in 20 frames). The
+//    tracker uses it to settle the front/back ambiguity: a fitted forward more than
 //    acos(flip_cos) away from the travel direction is re-fitted facing the travel direction.
 // Frames: the sensor frame (OpenCV axes, metres); up is the floor's unit normal.
 
@@ -43,23 +49,30 @@ std::optional<Eigen::Vector3d> HorizontalForward(const ArticulatedPose& pose,
 ArticulatedPose TurnedTo(const ArticulatedPose& pose, const Eigen::Vector3d& up,
                          const Eigen::Vector3d& forward);
 
-// The root's path over the last window frames (see the header comment).
+struct TravelOptions {
+  int window_frames = 20;        // >= 2
+  int max_window_frames = 90;    // >= window_frames
+  double min_distance_m = 0.3;   // > 0
+  double min_half_share = 0.25;  // [0, 0.5]
+
+  void Check() const;
+};
+
+// The root's path over the last frames (see the header comment).
 class TravelDirection {
  public:
-  // window >= 2 frames, min_distance_m > 0.
-  TravelDirection(int window, double min_distance_m);
+  explicit TravelDirection(const TravelOptions& options = {});
 
   // The root position of the next frame (sensor frame; a moving sensor's frames must be
   // world-consistent for the direction to mean anything: give world positions then).
   void Add(const Eigen::Vector3d& root);
   void Clear() { path_.clear(); }
-  // The unit direction across the floor (up: unit), or nullopt while the root has not moved
-  // min_distance_m within the window.
+  // The unit direction across the floor (up: unit), or nullopt while the root has not covered
+  // min_distance_m in a steady walk.
   std::optional<Eigen::Vector3d> Direction(const Eigen::Vector3d& up) const;
 
  private:
-  int window_;
-  double min_distance_m_;
+  TravelOptions options_;
   std::deque<Eigen::Vector3d> path_;
 };
 

@@ -42,6 +42,7 @@ void SkeletonTrackerOptions::Check() const {
   REENACT_CHECK(limb_search_trigger >= 0 && limb_search_trigger <= 1,
                 "limb_search_trigger in [0, 1]");
   limb_search.Check();
+  REENACT_CHECK(uncross_gain >= 0 && uncross_gain < 1, "uncross_gain in [0, 1)");
   REENACT_CHECK(limb_recheck_hypotheses >= 0 && limb_recheck_gain >= 0 && limb_recheck_gain < 1,
                 "limb_recheck_hypotheses must be >= 0 and limb_recheck_gain in [0, 1)");
   REENACT_CHECK(limb_recheck_max_other_move_m > 0 && limb_recheck_iterations >= 1,
@@ -55,8 +56,7 @@ void SkeletonTrackerOptions::Check() const {
   REENACT_CHECK(heading_candidates >= 1, "heading_candidates must be >= 1");
   extremities.Check();
   REENACT_CHECK(extremity_min_offset_m >= 0, "extremity_min_offset_m must be >= 0");
-  REENACT_CHECK(travel_window_frames >= 2 && travel_min_m > 0,
-                "travel_window_frames must be >= 2 and travel_min_m > 0");
+  travel.Check();
   REENACT_CHECK(travel_flip_cos >= -1 && travel_flip_cos <= 1, "travel_flip_cos in [-1, 1]");
   REENACT_CHECK(flip_cost_tolerance >= 1, "flip_cost_tolerance must be >= 1");
   REENACT_CHECK(heading_check_cooldown_frames >= 0, "heading_check_cooldown_frames must be >= 0");
@@ -85,7 +85,7 @@ SkeletonTracker::SkeletonTracker(const PinholeCamera& depth_camera, double depth
     : detector_(depth_camera, depth_scale_m, options.detect),
       camera_(depth_camera),
       options_(options),
-      travel_(std::max(2, options.travel_window_frames), std::max(1e-6, options.travel_min_m)) {
+      travel_(options.travel) {
   options.Check();
 }
 
@@ -134,6 +134,16 @@ BodyFitResult SkeletonTracker::Refine(BodyFitResult fit, const BodyObservation& 
     return fit;
   BodyFitResult again = FitBody(*body_, pose, obs, options_.fit, options_.limits);
   return again.cost < fit.cost ? again : fit;
+}
+
+BodyFitResult SkeletonTracker::Uncross(BodyFitResult fit, const BodyObservation& obs) const {
+  for (const LimbPair pair : {kArms, kLegs}) {
+    if (!LimbsCrossed(*body_, fit.posed, pair)) continue;
+    const ArticulatedPose start = SwappedLimbs(*body_, fit.pose, pair, options_.limits);
+    BodyFitResult swapped = Refine(FitBody(*body_, start, obs, options_.fit, options_.limits), obs);
+    if (swapped.cost < (1 - options_.uncross_gain) * fit.cost) fit = std::move(swapped);
+  }
+  return fit;
 }
 
 BodyFitResult SkeletonTracker::RecheckLimb(BodyFitResult fit, const BodyObservation& obs,
@@ -381,6 +391,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
   out.points = static_cast<int>(obs.points.size());
   BodyFitResult fit = FitBody(*body_, start, obs, options_.fit, options_.limits);
   fit = Refine(std::move(fit), obs);
+  if (options_.uncross_limbs) fit = Uncross(std::move(fit), obs);
   if (options_.limb_recheck_hypotheses > 0) {
     fit = RecheckLimb(std::move(fit), obs, static_cast<Limb>(recheck_limb_));
     recheck_limb_ = (recheck_limb_ + 1) % kLimbCount;

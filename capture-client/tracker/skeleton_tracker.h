@@ -51,6 +51,7 @@
 #include "capture-client/tracker/geodesic_extremities.h"
 #include "capture-client/tracker/heading.h"
 #include "capture-client/tracker/limb_search.h"
+#include "capture-client/tracker/limb_swap.h"
 #include "capture-client/tracker/person_detector.h"
 #include "common/image/image.h"
 #include "common/skeleton/skeleton.h"
@@ -73,6 +74,12 @@ struct SkeletonTrackerOptions {
   // person's (metres, > 0; larger than a limb moves in one frame).
   double keep_near_model_m = 0.4;
   LimbSearchOptions limb_search;
+  // Crossed limbs (limb_swap.h): when the fitted arms' (legs') ends lie crossed, the fit from
+  // the swapped limbs, re-posed by the limb search above, replaces the frame's when it costs
+  // at most (1 - uncross_gain) ([0, 1)) times as much. A subject crossing its arms keeps them
+  // crossed: the swapped fit then costs more.
+  bool uncross_limbs = true;
+  double uncross_gain = 0.05;
   // Limb re-check, every tracked frame for one limb in turn (left arm, right arm, left leg,
   // right leg): its limb_recheck_hypotheses (>= 0; 0 = off) cheapest re-posings
   // (limb_search.h's RankLimbHypotheses) are each fitted from there with
@@ -112,15 +119,12 @@ struct SkeletonTrackerOptions {
   // Headings tried when starting without the calibration pose and when recovering from the
   // silhouette (heading.h: evenly spaced about up, the first facing the sensor), >= 1.
   int heading_candidates = 8;
-  // Front from the walking direction (heading.h's TravelDirection): over the last
-  // travel_window_frames (>= 2) tracked frames, a root that moved at least travel_min_m (> 0)
-  // across the floor travels that way; a fitted forward whose cosine to it is below
-  // travel_flip_cos ([-1, 1]) is re-fitted facing it, and the new fit kept when it is good
-  // and costs at most flip_cost_tolerance (>= 1) times the old one (front and back fit
-  // nearly alike, so the walk decides). At most once every heading_check_cooldown_frames
-  // (>= 0) frames.
-  int travel_window_frames = 20;
-  double travel_min_m = 0.3;
+  // Front from the walking direction (heading.h's TravelDirection and its options): a fitted
+  // forward whose cosine to the travel is below travel_flip_cos ([-1, 1]) is re-fitted facing
+  // it, and the new fit kept when it is good and costs at most flip_cost_tolerance (>= 1)
+  // times the old one (front and back fit nearly alike, so the walk decides). At most once
+  // every heading_check_cooldown_frames (>= 0) frames.
+  TravelOptions travel;
   double travel_flip_cos = -0.3;
   double flip_cost_tolerance = 1.3;
   int heading_check_cooldown_frames = 10;
@@ -178,6 +182,7 @@ class SkeletonTracker {
   Skeleton WithConfidence(const BodyFitResult& fit, bool good) const;
   bool Good(const BodyFitResult& fit) const;
   BodyFitResult Refine(BodyFitResult fit, const BodyObservation& obs) const;
+  BodyFitResult Uncross(BodyFitResult fit, const BodyObservation& obs) const;
   // The limb re-check of the options for limb `limb`; returns the fit to keep.
   BodyFitResult RecheckLimb(BodyFitResult fit, const BodyObservation& obs, Limb limb) const;
   // The best-costing fit of upright starts facing each of `headings` on the blob's floor,

@@ -13,6 +13,7 @@
 #include "capture-client/tracker/body_fit.h"
 #include "capture-client/tracker/limb_search.h"
 #include "common/error/check.h"
+#include "tests/unit/capture-client/tracker/capsule_body_scene.h"
 
 namespace reenact::capture {
 namespace {
@@ -145,13 +146,7 @@ inline bool OnUnionSurface(const ArticulatedBody& body, const PosedBody3& posed,
 
 // Points on the capsules' surfaces facing the sensor, at pose `pose`: the fit's exact data.
 BodyObservation SurfaceObservation(const ArticulatedBody& body, const ArticulatedPose& pose) {
-  BodyObservation obs;
-  obs.camera = PinholeCamera::KinectLike();
-  obs.grid_step_px = 2;
-  const int w = obs.camera.width / 2, h = obs.camera.height / 2;
-  obs.silhouette = ImageGray8(w, h, 1, 0);
-  obs.depth_m = Image<float>(w, h, 1, 0.f);
-  obs.outside_px = Image<float>(w, h, 1, 0.f);  // no silhouette term: see below
+  BodyObservation obs = tracker_test::PointsObservation({});  // no silhouette term: see below
   const PosedBody3 posed = body.Pose(pose);
   for (const BodyCapsule& c : body.capsules()) {
     const Eigen::Isometry3d& t = posed.sensor_from_segment[static_cast<int>(c.segment)];

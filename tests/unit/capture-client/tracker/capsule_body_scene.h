@@ -1,5 +1,5 @@
 #pragma once
-// The tracker's capsule body (articulated_body.h) seen by a level sensor, for the extremity
+// The tracker's capsule body (articulated_body.h) seen by a level sensor, for the tracker's
 // tests: every pixel's ray is intersected with the posed body's capsules (the nearest hit
 // kept), giving the visible surface points in the sensor frame, as a depth region of a person
 // would. The sensor stands 1.3 m above the floor (the plane y = 1.3, OpenCV axes).
@@ -7,10 +7,12 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "capture-client/segment/floor_plane.h"
 #include "capture-client/tracker/articulated_body.h"
+#include "capture-client/tracker/body_fit.h"
 #include "capture-client/tracker/heading.h"
 
 namespace reenact::capture::tracker_test {
@@ -86,6 +88,20 @@ inline std::vector<Eigen::Vector3d> RenderBodyPoints(const ArticulatedBody& body
       if (std::isfinite(t)) points.push_back(t * d);
     }
   return points;
+}
+
+// A fit's observation of `points` alone: the silhouette and depth images of a Kinect-like grid
+// left empty (fit with silhouette_weight 0).
+inline BodyObservation PointsObservation(std::vector<Eigen::Vector3d> points) {
+  BodyObservation obs;
+  obs.camera = PinholeCamera::KinectLike();
+  obs.grid_step_px = 2;
+  const int w = obs.camera.width / 2, h = obs.camera.height / 2;
+  obs.silhouette = ImageGray8(w, h, 1, 0);
+  obs.depth_m = Image<float>(w, h, 1, 0.f);
+  obs.outside_px = Image<float>(w, h, 1, 0.f);
+  obs.points = std::move(points);
+  return obs;
 }
 
 }  // namespace reenact::capture::tracker_test

@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
+
+#include "common/error/check.h"
 
 namespace reenact::capture {
 namespace {
@@ -48,7 +51,7 @@ TEST(Heading, UprightPoseStandsOnTheGroundFacingForward) {
 }
 
 TEST(Heading, TravelNeedsTheMinimumDistanceWithinTheWindow) {
-  TravelDirection travel(5, 0.3);
+  TravelDirection travel({.window_frames = 5, .max_window_frames = 5});
   EXPECT_FALSE(travel.Direction(kUp));
   for (int k = 0; k < 5; ++k) travel.Add(Eigen::Vector3d(0.05 * k, 1.0 - 0.1 * k, 3));
   EXPECT_FALSE(travel.Direction(kUp));  // 0.2 m across the floor (the vertical part ignored)
@@ -59,6 +62,60 @@ TEST(Heading, TravelNeedsTheMinimumDistanceWithinTheWindow) {
   EXPECT_FALSE(travel.Direction(Eigen::Vector3d::Zero()));
   travel.Clear();
   EXPECT_FALSE(travel.Direction(kUp));
+}
+
+TEST(Heading, TravelNeedsASteadyWalk) {
+  // 0.5 m along x in 10 frames: steady.
+  TravelDirection travel({.window_frames = 10, .max_window_frames = 10});
+  for (int k = 0; k < 10; ++k) travel.Add(Eigen::Vector3d(0.05 * k, 1.0, 3));
+  ASSERT_TRUE(travel.Direction(kUp));
+  // Turning on the spot for the window's first half, then stepping 0.4 m: 1 cm against 40;
+  // the first half covers less than a quarter of the distance (a subject that turned and
+  // steps back or aside does not face its displacement).
+  travel.Clear();
+  for (int k = 0; k <= 5; ++k) travel.Add(Eigen::Vector3d(0.002 * k, 1.0, 3));
+  for (int k = 1; k < 5; ++k) travel.Add(Eigen::Vector3d(0.01 + 0.1 * k, 1.0, 3));
+  EXPECT_FALSE(travel.Direction(kUp));
+  // Without the steadiness asked for, the same path gives its direction.
+  TravelDirection any_walk({.window_frames = 10, .max_window_frames = 10, .min_half_share = 0});
+  for (int k = 0; k <= 5; ++k) any_walk.Add(Eigen::Vector3d(0.002 * k, 1.0, 3));
+  for (int k = 1; k < 5; ++k) any_walk.Add(Eigen::Vector3d(0.01 + 0.1 * k, 1.0, 3));
+  const auto d = any_walk.Direction(kUp);
+  ASSERT_TRUE(d);
+  EXPECT_NEAR(d->x(), 1, 1e-12);
+  // A quarter circle of 0.6 m radius at an even pace: steady (the chord, 45 degrees from
+  // either end's tangent, is the direction).
+  travel.Clear();
+  for (int k = 0; k < 10; ++k) {
+    const double a = k * std::numbers::pi / 2 / 9;
+    travel.Add(Eigen::Vector3d(0.6 * std::sin(a), 1.0, 3 + 0.6 * (1 - std::cos(a))));
+  }
+  const auto arc = travel.Direction(kUp);
+  ASSERT_TRUE(arc);
+  EXPECT_NEAR(arc->x(), std::sqrt(0.5), 1e-12);
+  EXPECT_NEAR(arc->z(), std::sqrt(0.5), 1e-12);
+}
+
+TEST(Heading, ASlowWalkIsTakenOverAsManyFramesAsItNeeds) {
+  // 1 cm per frame: 0.3 m takes 30 frames, more than the 20-frame window.
+  TravelDirection travel({.window_frames = 20, .max_window_frames = 90});
+  for (int k = 0; k < 25; ++k) travel.Add(Eigen::Vector3d(0, 1.0, 3 - 0.01 * k));
+  EXPECT_FALSE(travel.Direction(kUp));  // 0.24 m so far
+  for (int k = 25; k < 40; ++k) travel.Add(Eigen::Vector3d(0, 1.0, 3 - 0.01 * k));
+  const auto d = travel.Direction(kUp);
+  ASSERT_TRUE(d);
+  EXPECT_NEAR(d->z(), -1, 1e-12);
+  // Slower still: 0.3 m would take 100 frames, more than max_window_frames.
+  TravelDirection slower({.window_frames = 20, .max_window_frames = 90});
+  for (int k = 0; k < 200; ++k) slower.Add(Eigen::Vector3d(0.003 * k, 1.0, 3));
+  EXPECT_FALSE(slower.Direction(kUp));
+}
+
+TEST(Heading, BadTravelOptionsAreABug) {
+  EXPECT_THROW(TravelDirection({.window_frames = 1}), CheckError);
+  EXPECT_THROW(TravelDirection({.window_frames = 20, .max_window_frames = 10}), CheckError);
+  EXPECT_THROW(TravelDirection({.min_distance_m = 0}), CheckError);
+  EXPECT_THROW(TravelDirection({.min_half_share = 0.6}), CheckError);
 }
 
 }  // namespace

@@ -213,6 +213,12 @@ TEST(SkeletonTracker, BadInputIsABug) {
   SkeletonTrackerOptions bad;
   bad.subsample = 0;
   EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
+  bad = {};
+  bad.uncross_gain = 1;
+  EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
+  bad = {};
+  bad.travel.min_half_share = 0.6;
+  EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
 }
 
 }  // namespace

@@ -1,0 +1,24 @@
+#include "capture-client/tracker/limb_swap.h"
+
+#include "capture-client/tracker/extremity_pose.h"
+
+namespace reenact::capture {
+
+bool LimbsCrossed(const ArticulatedBody& body, const PosedBody3& posed, LimbPair pair,
+                  double margin_m) {
+  const Eigen::Vector3d left_axis =
+      posed.sensor_from_segment[SegmentParent(LimbUpper(pair.left))].linear().col(1);
+  return (LimbEnd(body, posed, pair.left) - LimbEnd(body, posed, pair.right)).dot(left_axis) <
+         -margin_m;
+}
+
+ArticulatedPose SwappedLimbs(const ArticulatedBody& body, const ArticulatedPose& pose,
+                             LimbPair pair, const JointLimits& limits) {
+  const PosedBody3 posed = body.Pose(pose);
+  const Eigen::Vector3d left_end = LimbEnd(body, posed, pair.left);
+  const Eigen::Vector3d right_end = LimbEnd(body, posed, pair.right);
+  const ArticulatedPose reached = ReachLimb(body, pose, pair.left, right_end, limits);
+  return ReachLimb(body, reached, pair.right, left_end, limits);
+}
+
+}  // namespace reenact::capture

@@ -1,0 +1,38 @@
+#pragma once
+// Left/right limb swaps: a fit whose left limb explains the right limb's points and the right
+// limb the left's (each reaching across the body for the other's data). Gauss-Newton cannot
+// undo it: each limb is held by the data it took, and moving either one alone costs more. The
+// CMU walk 131_01 on the procedural body shows it where the subject turns (frames 84-124: the
+// left hand 60 cm off, the right one 50).
+//
+// The swap is recognised as limbs crossed: the left limb's end (LimbEnd: fingertip or sole)
+// lies to the right of the right limb's end, along the parent segment's left axis (the chest's
+// for the arms, the pelvis's for the legs; y, see articulated_body.h). A subject may cross its
+// arms, so crossing only proposes the hypothesis SwappedLimbs: each limb reaching the other's
+// end (ReachLimb, extremity_pose.h); the tracker fits from there and keeps the result only when
+// it costs clearly less (skeleton_tracker.h).
+// Frames: the sensor frame (OpenCV axes, metres).
+
+#include "capture-client/tracker/articulated_body.h"
+
+namespace reenact::capture {
+
+// A left limb and its right counterpart: the arms or the legs.
+struct LimbPair {
+  Limb left = Limb::kLeftArm;
+  Limb right = Limb::kRightArm;
+};
+inline constexpr LimbPair kArms{Limb::kLeftArm, Limb::kRightArm};
+inline constexpr LimbPair kLegs{Limb::kLeftLeg, Limb::kRightLeg};
+
+// True when the pair's ends lie crossed (see above) by more than margin_m (>= 0, metres):
+// hands that touch in front of the body lie level, and are not.
+bool LimbsCrossed(const ArticulatedBody& body, const PosedBody3& posed, LimbPair pair,
+                  double margin_m = 0.01);
+
+// `pose` with the left limb reaching the right limb's end and the right limb the left's; the
+// rest of the body as in `pose`. Ends out of reach leave the limb straight towards them.
+ArticulatedPose SwappedLimbs(const ArticulatedBody& body, const ArticulatedPose& pose,
+                             LimbPair pair, const JointLimits& limits = {});
+
+}  // namespace reenact::capture
