@@ -301,3 +301,45 @@ TEST(SkeletonTracker, RecoversARaisedArmFromTheGeodesicExtremities) {
 
 }  // namespace
 }  // namespace reenact::capture
+
+namespace reenact::capture {
+namespace {
+
+// The CMU walk 131_01 (real motion capture) on the procedural body, tracked from its first
+// frame as the tracker evaluation does (Kinect-like depth noise, the default setting): the
+// mean error of both hands over frames 90-124, in metres. The subject turns there, and a
+// track whose arms take each other's points keeps them crossed (docs/measurements.md).
+double CmuWalkHandError(const SkeletonTrackerOptions& options) {
+  const std::string bvh = std::string(REENACT_SHARED_DATA_DIR) + "/mocap/cmu-131_01-walk.bvh";
+  static const SyntheticScene scene = SyntheticScene::Create("bvh:" + bvh, 1).value();
+  SkeletonTracker tracker(scene.sensor_camera(), 0.001, options);
+  SyntheticRenderOptions render;
+  render.depth_noise = true;
+  double sum = 0;
+  int n = 0;
+  for (int f = 0; f < 125; ++f) {
+    const TrackFrameResult r = tracker.Track(scene.RenderSensor(f, render).depth,
+                                             scene.world_from_sensor(f), scene.world_up());
+    if (f < 90) continue;
+    const Skeleton truth =
+        scene.skeleton_in_world(f).Transformed(scene.world_from_sensor(f).inverse());
+    EXPECT_TRUE(r.skeleton) << f;
+    if (!r.skeleton) continue;
+    for (const Joint hand : {Joint::kLeftHand, Joint::kRightHand})
+      sum += ((*r.skeleton)[hand] - truth[hand]).norm(), ++n;
+  }
+  return n ? sum / n : 1e9;
+}
+
+TEST(SkeletonTracker, UncrossesArmsThatTookEachOthersPoints) {
+  // Without the swap the arms stay crossed through the turn: the hands 55 cm off on average
+  // (measured; each 50-95 cm; bound 30). With it, the swap is taken as the turn begins and the
+  // hands follow their own arms: 6.1 cm (bound 10: a hand tracked well is 3-10 cm off).
+  SkeletonTrackerOptions without;
+  without.uncross_limbs = false;
+  EXPECT_GT(CmuWalkHandError(without), 0.30);
+  EXPECT_LT(CmuWalkHandError(SkeletonTrackerOptions{}), 0.10);
+}
+
+}  // namespace
+}  // namespace reenact::capture
