@@ -49,11 +49,12 @@ ArticulatedPose WithLimb(const ArticulatedPose& pose, Limb limb, const ScoredHyp
 
 // The search's cost (see the header) of every hypothesis for `limb` at `pose`, and of `pose`
 // itself (*current). *lost: the points `pose` leaves beyond outlier_m of every capsule that
-// some posing of the limb can reach.
+// some posing of the limb can reach; no hypothesis is scored (empty) unless there are more
+// than min_lost of them.
 std::vector<ScoredHypothesis> ScoreLimbHypotheses(
     const ArticulatedBody& body, const BodyObservation& obs, const BodyFitOptions& fit,
     const JointLimits& limits, const LimbSearchOptions& options, const ArticulatedPose& pose,
-    Limb limb, double* current, int* lost = nullptr) {
+    Limb limb, double* current, int* lost = nullptr, double min_lost = -1) {
   const S upper = LimbUpper(limb), lower = LimbLower(limb);
   const double delta = fit.huber_m;
   const double cap_cost = HuberCost(options.cap_m, delta);
@@ -148,6 +149,7 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
   }
   if (lost) *lost = n_lost;
   std::vector<ScoredHypothesis> scored;
+  if (n_lost <= min_lost) return scored;
   scored.reserve(kDirectionCount * 9);
   int direction = 0;
   for (int i = -1; i <= 1; ++i)
@@ -202,9 +204,9 @@ int SearchLimbs(const ArticulatedBody& body, const BodyObservation& obs, const B
       if (moved[l]) continue;
       double current = 0;
       int lost = 0;
-      const std::vector<ScoredHypothesis> scored = ScoreLimbHypotheses(
-          body, obs, fit, limits, options, *pose, static_cast<Limb>(l), &current, &lost);
-      if (lost <= options.min_lost_share * static_cast<double>(obs.points.size())) continue;
+      const std::vector<ScoredHypothesis> scored =
+          ScoreLimbHypotheses(body, obs, fit, limits, options, *pose, static_cast<Limb>(l),
+                              &current, &lost, options.min_lost_share * obs.points.size());
       const ScoredHypothesis* best = nullptr;
       for (const ScoredHypothesis& h : scored)
         if (2 * h.lost_taken >= lost && (!best || h.cost < best->cost)) best = &h;
