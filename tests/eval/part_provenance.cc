@@ -37,7 +37,11 @@ double WrongShareOfSample(const SourceLabels& source, double u, double v, int ex
 
 PartProvenance MeasurePartProvenance(const ReferenceRender& render,
                                      std::span<const BodyPart> cylinder_parts,
-                                     const std::function<SourceLabels(int frame)>& source) {
+                                     const std::function<SourceLabels(int frame)>& source,
+                                     const ImageLabel8* seen_labels) {
+  REENACT_CHECK(!seen_labels || (seen_labels->width == render.mask.width &&
+                                 seen_labels->height == render.mask.height),
+                "the seen labels must have the render's size");
   PartProvenance out;
   for (int y = 0; y < render.mask.height; ++y)
     for (int x = 0; x < render.mask.width; ++x) {
@@ -48,16 +52,23 @@ PartProvenance MeasurePartProvenance(const ReferenceRender& render,
       const int part = render.part.at(x, y);
       REENACT_CHECK(part >= 0 && static_cast<size_t>(part) < cylinder_parts.size(),
                     "render part index " + std::to_string(part) + " has no body part");
+      const int drawn = PartLabel(cylinder_parts[part]);
+      const int seen_at_pixel = seen_labels ? seen_labels->at(x, y) : kBackgroundLabel;
+      const int seen = seen_at_pixel != kBackgroundLabel ? seen_at_pixel : drawn;
       for (int j = 0; j < render.source_frame.channels; ++j) {
         const int frame = render.source_frame.at(x, y, j);
         if (frame < 0) continue;
         const double share =
             render.source_weight.empty() ? (j == 0 ? 1.0 : 0.0) : render.source_weight.at(x, y, j);
         if (share <= 0) continue;
-        out.wrong_pixels +=
-            share * WrongShareOfSample(source(frame), render.source_pixel.at(x, y, 2 * j),
-                                       render.source_pixel.at(x, y, 2 * j + 1),
-                                       PartLabel(cylinder_parts[part]));
+        const SourceLabels labels = source(frame);
+        const double u = render.source_pixel.at(x, y, 2 * j);
+        const double v = render.source_pixel.at(x, y, 2 * j + 1);
+        const double wrong = WrongShareOfSample(labels, u, v, drawn);
+        out.wrong_pixels += share * wrong;
+        if (seen_labels)
+          out.wrong_seen_pixels +=
+              share * (seen == drawn ? wrong : WrongShareOfSample(labels, u, v, seen));
       }
     }
   return out;

@@ -22,6 +22,21 @@
 //
 //   wrong_part_rate = sum of wrong shares / subject pixels
 //
+// That rate asks for the drawn cylinder's part, so it also counts the model's part borders
+// against the body's: where the upper-torso cylinder covers what the body's skinning calls the
+// lower torso, a pixel copied from exactly what the sensor saw there counts as wrong (at the
+// sensor's own view with frame k itself stored, the reenactment is such a copy and still
+// scores 0.09 on CesiumMan). The seen-part rate asks instead for the part the ground truth
+// shows at the output pixel, from the same camera:
+//
+//   wrong_seen_part_rate = sum of wrong shares against seen_label(x, y) / subject pixels
+//
+// with seen_label(x, y) the truth's label at the pixel, or the drawn cylinder's part where
+// the truth shows no subject there (an extra pixel: a silhouette error, which the IoU
+// measures). It is 0 for a pixel copy of the right view (up to bilinear sampling across
+// label borders) and counts what the viewer sees as a doubled limb: another part's texture
+// where the body shows this one.
+//
 // Subject pixels are all pixels the reference render marks (mask 255); a pixel drawn in a
 // part's flat colour (no stored frame: untextured) took no colour from any source pixel and
 // counts as subject but never as wrong; their share is reported as untextured_rate.
@@ -47,7 +62,12 @@ struct PartProvenance {
   int subject_pixels = 0;   // pixels the reference render marks as subject
   int textured_pixels = 0;  // of those, coloured from a stored frame
   double wrong_pixels = 0;  // sum of the textured pixels' wrong shares
+  // The same against the part the ground truth shows at the pixel (0 unless measured).
+  double wrong_seen_pixels = 0;
   double WrongPartRate() const { return subject_pixels ? wrong_pixels / subject_pixels : 0.0; }
+  double WrongSeenPartRate() const {
+    return subject_pixels ? wrong_seen_pixels / subject_pixels : 0.0;
+  }
   double UntexturedRate() const {
     return subject_pixels ? 1.0 - static_cast<double>(textured_pixels) / subject_pixels : 0.0;
   }
@@ -59,10 +79,14 @@ double WrongShareOfSample(const SourceLabels& source, double u, double v, int ex
 
 // Sums the wrong shares over a reference render. cylinder_parts[i] is the body part of the
 // render's part index i; source(n) gives stored frame n's crop mask and labels (called once
-// per contributor of a textured pixel; it may cache). Preconditions (CHECK): every part index in
-// the render is < cylinder_parts.size(); source(n) returns non-null images for every source frame.
+// per contributor of a textured pixel; it may cache). seen_labels: the ground truth's part
+// labels from the render's camera (same size as the render), for wrong_seen_pixels; null
+// leaves it 0. Preconditions (CHECK): every part index in the render is <
+// cylinder_parts.size(); source(n) returns non-null images for every source frame;
+// seen_labels, when given, has the render's size.
 PartProvenance MeasurePartProvenance(const ReferenceRender& render,
                                      std::span<const BodyPart> cylinder_parts,
-                                     const std::function<SourceLabels(int frame)>& source);
+                                     const std::function<SourceLabels(int frame)>& source,
+                                     const ImageLabel8* seen_labels = nullptr);
 
 }  // namespace reenact::eval

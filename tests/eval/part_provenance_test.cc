@@ -67,53 +67,101 @@ TEST(PartProvenance, SamplesBeyondTheCropEdgeClampToIt) {
   EXPECT_DOUBLE_EQ(WrongShareOfSample(f.source(), 3.5, 0, kTorso), 0.0);
 }
 
-// The reference renderer's own provenance: a cap seen head-on through an identity
-// stored_from_viewer samples the crop at the very pixel it covers, so exactly the cap pixels
-// right of the label border are wrong; a flat-coloured part adds subject pixels, none wrong.
-TEST(PartProvenance, MeasuresAReferenceRenderPixelByPixel) {
-  const PinholeCamera camera{160, 120, 200, 200, 80.3, 60.7, {}};
+// A cap seen head-on through an identity stored_from_viewer samples the crop at the very
+// pixel it covers; the labels' border runs through the cap at x = 84. A second, flat-coloured
+// part stands apart.
+struct CapOverALabelBorder {
+  PinholeCamera camera{160, 120, 200, 200, 80.3, 60.7, {}};
   ReferenceCrop crop;
-  crop.color = ImageRgb8(100, 80, 3, 128);
-  crop.mask = ImageGray8(100, 80, 1, 255);
-  crop.camera = camera.Cropped(40, 20, 100, 80);
-  ImageLabel8 labels(160, 120, 1, 0);
-  for (int y = 0; y < 120; ++y)
-    for (int x = 0; x < 160; ++x) labels.at(x, y) = x < 84 ? kArm : kTorso;
-
-  std::vector<ReferencePart> parts(2);
-  parts[0].cylinder = Cylinder{{0.02, -0.01, 1.0}, {0.02, -0.01, 1.5}, 0.15};  // cap r = 30 px
-  parts[0].candidates.push_back({&crop, 5, Eigen::Matrix4d::Identity(), 1.0});
-  parts[1].cylinder = Cylinder{{-0.35, -0.2, 1.0}, {-0.35, -0.2, 1.5}, 0.02};  // flat, apart
-  const ReferenceRender render = RenderReference(camera, parts);
-  const std::vector<BodyPart> cylinder_parts = {BodyPart::kLeftForearm, BodyPart::kHead};
-
+  ImageLabel8 labels{160, 120, 1, 0};
+  ReferenceRender render;
+  std::vector<BodyPart> cylinder_parts = {BodyPart::kLeftForearm, BodyPart::kHead};
   int cap = 0, right_of_border = 0, flat = 0;
-  for (int y = 0; y < 120; ++y)
-    for (int x = 0; x < 160; ++x) {
-      if (render.part.at(x, y) == 0) {
-        ++cap;
-        right_of_border += x >= 84;
+
+  CapOverALabelBorder() {
+    crop.color = ImageRgb8(100, 80, 3, 128);
+    crop.mask = ImageGray8(100, 80, 1, 255);
+    crop.camera = camera.Cropped(40, 20, 100, 80);
+    for (int y = 0; y < 120; ++y)
+      for (int x = 0; x < 160; ++x) labels.at(x, y) = x < 84 ? kArm : kTorso;
+    std::vector<ReferencePart> parts(2);
+    parts[0].cylinder = Cylinder{{0.02, -0.01, 1.0}, {0.02, -0.01, 1.5}, 0.15};  // cap r = 30 px
+    parts[0].candidates.push_back({&crop, 5, Eigen::Matrix4d::Identity(), 1.0});
+    parts[1].cylinder = Cylinder{{-0.35, -0.2, 1.0}, {-0.35, -0.2, 1.5}, 0.02};  // flat, apart
+    render = RenderReference(camera, parts);
+    for (int y = 0; y < 120; ++y)
+      for (int x = 0; x < 160; ++x) {
+        if (render.part.at(x, y) == 0) {
+          ++cap;
+          right_of_border += x >= 84;
+        }
+        flat += render.part.at(x, y) == 1;
       }
-      flat += render.part.at(x, y) == 1;
-    }
-  ASSERT_GT(cap, 2500);
-  ASSERT_GT(right_of_border, 500);
-  ASSERT_GT(flat, 10);
+  }
+  SourceLabels source() const { return {&crop.mask, 40, 20, &labels}; }
+};
+
+// The reference renderer's own provenance: exactly the cap pixels right of the label border
+// are wrong; the flat-coloured part adds subject pixels, none wrong.
+TEST(PartProvenance, MeasuresAReferenceRenderPixelByPixel) {
+  const CapOverALabelBorder s;
+  ASSERT_GT(s.cap, 2500);
+  ASSERT_GT(s.right_of_border, 500);
+  ASSERT_GT(s.flat, 10);
 
   int calls = 0;
   const PartProvenance p =
-      MeasurePartProvenance(render, cylinder_parts, [&](int frame) -> SourceLabels {
+      MeasurePartProvenance(s.render, s.cylinder_parts, [&](int frame) -> SourceLabels {
         EXPECT_EQ(frame, 5);
         ++calls;
-        return {&crop.mask, 40, 20, &labels};
+        return s.source();
       });
-  EXPECT_EQ(p.subject_pixels, cap + flat);
-  EXPECT_EQ(p.textured_pixels, cap);
-  EXPECT_EQ(calls, cap);
+  EXPECT_EQ(p.subject_pixels, s.cap + s.flat);
+  EXPECT_EQ(p.textured_pixels, s.cap);
+  EXPECT_EQ(calls, s.cap);
   // Samples land on texel centres up to float rounding of source_pixel (< 1e-4 px).
-  EXPECT_NEAR(p.wrong_pixels, right_of_border, 1e-3 * cap);
-  EXPECT_NEAR(p.WrongPartRate(), static_cast<double>(right_of_border) / (cap + flat), 1e-5);
-  EXPECT_NEAR(p.UntexturedRate(), static_cast<double>(flat) / (cap + flat), 1e-12);
+  EXPECT_NEAR(p.wrong_pixels, s.right_of_border, 1e-3 * s.cap);
+  EXPECT_NEAR(p.WrongPartRate(), static_cast<double>(s.right_of_border) / (s.cap + s.flat), 1e-5);
+  EXPECT_NEAR(p.UntexturedRate(), static_cast<double>(s.flat) / (s.cap + s.flat), 1e-12);
+  EXPECT_EQ(p.wrong_seen_pixels, 0.0);  // not measured without seen labels
+}
+
+// The same render is a pixel copy of the stored view: where the viewer sees the torso (right
+// of the border) the cap shows the torso's pixels. Against the seen labels nothing is wrong,
+// though the drawn part's rate still counts the right side.
+TEST(PartProvenance, APixelCopyOfTheSeenViewShowsNoWrongPart) {
+  const CapOverALabelBorder s;
+  const PartProvenance p = MeasurePartProvenance(
+      s.render, s.cylinder_parts, [&](int) { return s.source(); }, &s.labels);
+  EXPECT_NEAR(p.wrong_pixels, s.right_of_border, 1e-3 * s.cap);
+  EXPECT_NEAR(p.wrong_seen_pixels, 0.0, 1e-3 * s.cap);
+  EXPECT_NEAR(p.WrongSeenPartRate(), 0.0, 1e-5);
+}
+
+// Seen labels that show the arm everywhere: the torso pixels right of the border are another
+// part than the one seen, as they are for the drawn arm. Where the truth shows no subject the
+// drawn part is expected, so a seen image of background counts as the drawn rate does.
+TEST(PartProvenance, SeenLabelsNameThePartExpectedAtEachPixel) {
+  const CapOverALabelBorder s;
+  for (const int seen_label : {kArm, kBackgroundLabel}) {
+    const ImageLabel8 seen(160, 120, 1, static_cast<uint8_t>(seen_label));
+    const PartProvenance p = MeasurePartProvenance(
+        s.render, s.cylinder_parts, [&](int) { return s.source(); }, &seen);
+    EXPECT_NEAR(p.wrong_seen_pixels, s.right_of_border, 1e-3 * s.cap) << seen_label;
+    EXPECT_NEAR(p.wrong_seen_pixels, p.wrong_pixels, 1e-9) << seen_label;
+  }
+  const ImageLabel8 torso(160, 120, 1, static_cast<uint8_t>(kTorso));  // the left side wrong
+  const PartProvenance p = MeasurePartProvenance(
+      s.render, s.cylinder_parts, [&](int) { return s.source(); }, &torso);
+  EXPECT_NEAR(p.wrong_seen_pixels, s.cap - s.right_of_border, 1e-3 * s.cap);
+}
+
+TEST(PartProvenance, SeenLabelsOfAnotherSizeAreABug) {
+  const CapOverALabelBorder s;
+  const ImageLabel8 small(80, 60, 1, 0);
+  EXPECT_THROW(MeasurePartProvenance(
+                   s.render, s.cylinder_parts, [&](int) { return s.source(); }, &small),
+               CheckError);
 }
 
 // A blended pixel: contributors with shares 1/4 (a texel wholly of another part) and 3/4

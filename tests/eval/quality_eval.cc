@@ -225,11 +225,11 @@ Expected<FrameEvaluation> QualityHarness::Evaluate(const QualityMethod& method, 
         return viewer::ReferenceTexture{&s.crops.at(texture), s.frame_of_texture.at(texture)};
       });
   e.reference = RenderReference(s.camera, parts, viewer::ReferenceOptionsOf(e.frame.draw));
-  e.provenance = MeasurePartProvenance(e.reference, e.frame.cylinder_parts,
-                                       [&s](int n) { return s.LabelsFor(n); });
-  e.reference_iou = SilhouetteIou(e.rendered.subject_mask, e.reference.mask);
-
   e.truth = s.scene.Render(k, s.camera, viewer_from_world->inverse(), {.draw_room = false});
+  e.provenance = MeasurePartProvenance(
+      e.reference, e.frame.cylinder_parts, [&s](int n) { return s.LabelsFor(n); },
+      &e.truth.part_labels);
+  e.reference_iou = SilhouetteIou(e.rendered.subject_mask, e.reference.mask);
   e.comparison =
       CompareSubject(e.rendered.color, e.rendered.subject_mask, e.truth.color, e.truth.mask);
   return e;
@@ -302,6 +302,7 @@ Expected<QualityRun> RunQuality(const QualityOptions& options) {
         row.iou += e->comparison.iou;
         row.colour_mae += e->comparison.colour_mae;
         row.wrong_part_rate += e->provenance.WrongPartRate();
+        row.wrong_seen_part_rate += e->provenance.WrongSeenPartRate();
         row.untextured_rate += e->provenance.UntexturedRate();
         row.reference_iou += e->reference_iou;
         ++row.n;
@@ -315,7 +316,7 @@ Expected<QualityRun> RunQuality(const QualityOptions& options) {
       row.flicker = row.reenacted_change - row.truth_change;
       if (psnr_frames) row.psnr_db /= psnr_frames;
       for (double* mean : {&row.ssim, &row.iou, &row.colour_mae, &row.wrong_part_rate,
-                           &row.untextured_rate, &row.reference_iou})
+                           &row.wrong_seen_part_rate, &row.untextured_rate, &row.reference_iou})
         *mean /= row.n;
       row.ms_per_frame = ms.empty() ? 0 : UpperMedian(ms);
       run.rows.push_back(row);
@@ -330,8 +331,8 @@ Expected<QualityRun> RunQuality(const QualityOptions& options) {
           path,
           SideBySide(e->truth.color, e->truth.mask, e->rendered.color, e->rendered.subject_mask));
       if (!written.ok()) return written.error();
-      run.images.push_back(
-          {method->name, pair, path, e->comparison, e->provenance.WrongPartRate()});
+      run.images.push_back({method->name, pair, path, e->comparison, e->provenance.WrongPartRate(),
+                            e->provenance.WrongSeenPartRate()});
     }
   }
   return run;

@@ -5,7 +5,8 @@
 // from the very same camera, and compare:
 //   - PSNR, SSIM, silhouette IoU, colour error of the GL rendering (image_metrics.h; PSNR
 //     and SSIM over the bounding box of the union of both silhouettes, kCropRule);
-//   - wrong-part rate (part_provenance.h), with provenance from the CPU reference renderer
+//   - wrong-part rate and seen-part rate (part_provenance.h), with provenance from the CPU
+//   reference renderer
 //     (common/render/reference_renderer.h) drawing the same draw list; reference_iou, the
 //     silhouette IoU of the two renderings, shows they drew the same thing;
 //   - flicker (temporal_flicker.h) between consecutive evaluated frames k and k + frame_step
@@ -87,11 +88,12 @@ struct QualityRow {
   double psnr_db = 0;  // mean over frames with finite PSNR
   double ssim = 0;     // means over the frames
   double iou = 0;
-  double colour_mae = 0;       // 0..255
-  double wrong_part_rate = 0;  // 0..1
-  double untextured_rate = 0;  // 0..1, share of subject pixels in flat colour
-  double reference_iou = 0;    // GL vs reference silhouette (provenance check)
-  double ms_per_frame = 0;     // median
+  double colour_mae = 0;            // 0..255
+  double wrong_part_rate = 0;       // 0..1, against the drawn cylinder's part
+  double wrong_seen_part_rate = 0;  // 0..1, against the part the truth shows there
+  double untextured_rate = 0;       // 0..1, share of subject pixels in flat colour
+  double reference_iou = 0;         // GL vs reference silhouette (provenance check)
+  double ms_per_frame = 0;          // median
   // Means over the n - 1 pairs of consecutive evaluated frames (temporal_flicker.h), 0..255.
   double reenacted_change = 0;
   double truth_change = 0;
@@ -105,6 +107,7 @@ struct QualityImage {
   std::string path;              // the PNG written
   SubjectComparison comparison;  // of this frame
   double wrong_part_rate = 0;
+  double wrong_seen_part_rate = 0;
 };
 
 struct QualityRun {
