@@ -72,14 +72,16 @@ TEST(Heading, TravelNeedsASteadyWalk) {
   // Turning on the spot for the window's first half, then stepping 0.4 m: 1 cm against 40;
   // the first half covers less than a quarter of the distance (a subject that turned and
   // steps back or aside does not face its displacement).
+  const auto turn_then_step = [](TravelDirection& t) {
+    for (int k = 0; k <= 5; ++k) t.Add(Eigen::Vector3d(0.002 * k, 1.0, 3));
+    for (int k = 1; k < 5; ++k) t.Add(Eigen::Vector3d(0.01 + 0.1 * k, 1.0, 3));
+  };
   travel.Clear();
-  for (int k = 0; k <= 5; ++k) travel.Add(Eigen::Vector3d(0.002 * k, 1.0, 3));
-  for (int k = 1; k < 5; ++k) travel.Add(Eigen::Vector3d(0.01 + 0.1 * k, 1.0, 3));
+  turn_then_step(travel);
   EXPECT_FALSE(travel.Direction(kUp));
   // Without the steadiness asked for, the same path gives its direction.
   TravelDirection any_walk({.window_frames = 10, .max_window_frames = 10, .min_half_share = 0});
-  for (int k = 0; k <= 5; ++k) any_walk.Add(Eigen::Vector3d(0.002 * k, 1.0, 3));
-  for (int k = 1; k < 5; ++k) any_walk.Add(Eigen::Vector3d(0.01 + 0.1 * k, 1.0, 3));
+  turn_then_step(any_walk);
   const auto d = any_walk.Direction(kUp);
   ASSERT_TRUE(d);
   EXPECT_NEAR(d->x(), 1, 1e-12);

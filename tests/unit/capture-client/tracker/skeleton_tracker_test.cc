@@ -221,12 +221,6 @@ TEST(SkeletonTracker, BadInputIsABug) {
   EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
 }
 
-}  // namespace
-}  // namespace reenact::capture
-
-namespace reenact::capture {
-namespace {
-
 // The body's heading about the world's up from a skeleton (sensor frame), radians.
 double HeadingError(const Skeleton& a, const Skeleton& b, const Eigen::Vector3d& up) {
   const auto forward = [&](const Skeleton& s) {
@@ -298,12 +292,6 @@ TEST(SkeletonTracker, RecoversARaisedArmFromTheGeodesicExtremities) {
     EXPECT_LT(Mpjpe(*r.skeleton, Truth(f)), 0.05) << f;
   }
 }
-
-}  // namespace
-}  // namespace reenact::capture
-
-namespace reenact::capture {
-namespace {
 
 // The CMU walk 131_01 (real motion capture) on the procedural body, tracked from its first
 // frame as the tracker evaluation does (Kinect-like depth noise, the default setting): the
