@@ -64,6 +64,9 @@ void CheckPart(const ReferencePart& part, size_t index) {
     REENACT_CHECK(std::isfinite(candidate.weight) && candidate.weight >= 0,
                   name + "candidate weights must be finite and >= 0");
     REENACT_CHECK(candidate.stored_light.allFinite(), name + "stored_light must be finite");
+    REENACT_CHECK(
+        candidate.fallback || &candidate == &part.candidates.front() || !(&candidate - 1)->fallback,
+        name + "fallback candidates must follow every ranked one");
     CheckCrop(*candidate.crop, name);
   }
 }
@@ -95,6 +98,7 @@ bool SampleCrop(const ReferenceCrop& crop, double u, double v, Eigen::Vector3d& 
 
 struct CandidateSample {
   bool usable = false;
+  bool other_part = false;  // usable, and the label map gives the texel to another part
   bool visible = false;
   Eigen::Vector3d rgb = Eigen::Vector3d::Zero();  // 0-255, where usable
   double u = -1, v = -1;
@@ -132,7 +136,10 @@ CandidateSample SampleCandidate(const ReferenceCandidate& candidate, const Eigen
   out.u = u;
   out.v = v;
   if (!test_visibility || crop.part_labels.empty()) return out;
-  if (crop.part_labels.at(x, y) != part_label) return out;
+  if (crop.part_labels.at(x, y) != part_label) {
+    out.other_part = true;
+    return out;
+  }
   if (!crop.depth_m.empty()) {
     const double d = crop.depth_m.at(x, y);
     if (d > 0 && !(std::abs(d - q.z()) <= options.depth_tolerance_m)) return out;
@@ -153,7 +160,10 @@ bool ShadeTextured(const ReferencePart& part, const Eigen::Vector3d& p,
                    std::array<Contributor, kMaxTextureCandidates>& contributors, int& count) {
   count = 0;
   const bool visibility = part.texturing != TexturingMode::kFirst;
-  const int n = visibility ? static_cast<int>(part.candidates.size()) : 1;
+  const int ranked =
+      static_cast<int>(std::count_if(part.candidates.begin(), part.candidates.end(),
+                                     [](const ReferenceCandidate& c) { return !c.fallback; }));
+  const int n = visibility ? ranked : 1;
   const int label = PartLabel(part.part);
   for (int i = 0; i < n; ++i)
     s[i] = SampleCandidate(part.candidates[i], p, normal, label, visibility, options);
@@ -179,6 +189,16 @@ bool ShadeTextured(const ReferencePart& part, const Eigen::Vector3d& p,
   for (int i = 0; i < n && chosen < 0; ++i)
     if (s[i].usable) chosen = i;
   if (chosen < 0) return false;
+  if (visibility && s[chosen].other_part) {
+    const int total = static_cast<int>(part.candidates.size());
+    for (int i = ranked; i < total; ++i) {
+      s[i] = SampleCandidate(part.candidates[i], p, normal, label, true, options);
+      if (s[i].visible) {
+        chosen = i;
+        break;
+      }
+    }
+  }
   rgb = s[chosen].rgb;
   contributors[0] = {chosen, 1.0};
   count = 1;

@@ -83,6 +83,8 @@ struct ReferenceCandidate {
   // The subject light as this stored frame saw it, viewer frame (relighting, texturing.h);
   // finite.
   Eigen::Vector3d stored_light = Eigen::Vector3d::Zero();
+  // A fallback candidate (texturing.h): after every ranked one.
+  bool fallback = false;
 };
 
 // One body-part cylinder to draw.
@@ -90,8 +92,8 @@ struct ReferencePart {
   // Axis a -> b, radius, shape and width direction, viewer frame, metres; finite, radius > 0,
   // shape values > 0.
   Cylinder cylinder;
-  // Ranked texture candidates, at most kMaxTextureCandidates; empty = untextured (flat
-  // colour).
+  // Texture candidates, ranked then fallback ones, at most kMaxTextureCandidates; empty =
+  // untextured (flat colour).
   std::vector<ReferenceCandidate> candidates;
   BodyPart part = BodyPart::kHead;  // the body part modelled (visibility test (a))
   TexturingMode texturing = TexturingMode::kFirst;

@@ -3,9 +3,10 @@
 // cylinder (issue 9), shared rule for rule by the GL renderer
 // (viewer-client/render/renderer.h) and the CPU reference renderer (reference_renderer.h).
 //
-// A cylinder carries a ranked list of at most kMaxTextureCandidates candidates, each a stored
-// frame's crop with its stored_from_viewer (thesis Eq. 16) and a weight >= 0, plus the body
-// part it models. Per fragment at the viewer-frame surface point p*, candidate i:
+// A cylinder carries at most kMaxTextureCandidates candidates, the ranked ones and then the
+// fallback ones (below), each a stored frame's crop with its stored_from_viewer (thesis Eq. 16)
+// and a weight >= 0, plus the body part it models. Per fragment at the viewer-frame surface
+// point p*, candidate i:
 //   - maps p* to p_n = stored_from_viewer_i p* (divided by w) and projects it with the crop
 //     camera's intrinsics to (u, v) (OpenCV pixel centres at integers);
 //   - is *usable* when p_n.z > 0, (u, v) lies in [-0.5, w - 0.5] x [-0.5, h - 0.5] and the
@@ -24,6 +25,13 @@
 //   - kBlendVisible: sum_i w_i c_i / sum_i w_i over the visible candidates (weights
 //     renormalised over them); where that sum of weights is 0 (none visible, or all their
 //     weights 0), as kFirstVisible.
+// Fallback candidates (the visible modes; after every ranked candidate, which the modes above
+// use alone): where those rules take the first usable ranked candidate because none is
+// visible, and that candidate's label at (x, y) is another part's (its texel shows what stood
+// in front of this part), the first visible fallback candidate colours the fragment instead,
+// if any. So fallbacks never add to the silhouette (a fragment no ranked candidate can colour
+// is still discarded) and never replace a texel labelled as this part whose depth alone
+// disagrees (the rough model's depth, more often than an occluder).
 // A cylinder with no candidate is drawn in its flat colour.
 // Relighting (common/texture/subject_light.h), where the frame's light is not zero: each
 // usable candidate's colour c_i is taken as
@@ -39,7 +47,8 @@
 
 namespace reenact {
 
-inline constexpr int kMaxTextureCandidates = 3;
+// Ranked candidates and fallback candidates (weight 0, reenactment.h) together.
+inline constexpr int kMaxTextureCandidates = 6;
 
 // Default of depth_tolerance_m. The cylinders are rough: over the labelled subject pixels of
 // every 10th stored frame of the synthetic CesiumMan clips, |stored depth - depth of the

@@ -73,6 +73,7 @@ void PartSelectionOptions::Check() const {
   REENACT_CHECK(std::isfinite(missing_joint_cost_m) && missing_joint_cost_m >= 0,
                 "missing_joint_cost_m must be finite and >= 0");
   REENACT_CHECK(hysteresis >= 0 && hysteresis < 1, "hysteresis must be in [0, 1)");
+  REENACT_CHECK(fallback_k >= 0 && fallback_k <= 8, "part selection fallback_k must be in [0, 8]");
 }
 
 std::optional<PartDescriptor> DescribePart(BodyPart part, const Skeleton& skeleton) {
@@ -93,14 +94,18 @@ std::optional<PartDescriptor> DescribePart(BodyPart part, const Skeleton& skelet
 }
 
 PartTextureIndex::PartTextureIndex(std::span<const Skeleton> stored,
-                                   std::span<const uint16_t> part_allowed)
+                                   std::span<const uint16_t> part_allowed,
+                                   std::span<const PartCoverages> coverage)
     : stored_count_(static_cast<int>(stored.size())) {
   REENACT_CHECK(part_allowed.empty() || part_allowed.size() == stored.size(),
                 "part_allowed needs one mask per stored skeleton");
+  REENACT_CHECK(coverage.empty() || coverage.size() == stored.size(),
+                "coverage needs one entry per stored skeleton");
   for (int p = 0; p < kBodyPartCount; ++p) {
     for (int n = 0; n < stored_count_; ++n) {
       if (!part_allowed.empty() && !(part_allowed[n] & (1u << p))) continue;
-      if (auto d = DescribePart(static_cast<BodyPart>(p), stored[n])) rows_[p].push_back({n, *d});
+      if (auto d = DescribePart(static_cast<BodyPart>(p), stored[n]))
+        rows_[p].push_back({n, *d, coverage.empty() ? PartCoverage{0} : coverage[n][p]});
     }
   }
 }
@@ -115,6 +120,34 @@ std::optional<double> PartTextureIndex::Cost(BodyPart part, const Skeleton& view
   if (it == rows.end() || it->frame != n) return std::nullopt;
   return DescriptorCost(*q, it->descriptor, static_cast<int>(PartDescriptorJoints(part).size()),
                         missing_joint_cost_m);
+}
+
+void PartTextureIndex::AppendFallbacks(int p, int fallback_k, std::span<const PartCandidate> scored,
+                                       std::vector<PartCandidate>& chosen) const {
+  const std::vector<Row>& rows = rows_[p];
+  const auto coverage_of = [&rows](int frame) {
+    const auto it = std::lower_bound(rows.begin(), rows.end(), frame,
+                                     [](const Row& r, int f) { return r.frame < f; });
+    return it != rows.end() && it->frame == frame ? it->coverage : PartCoverage{0};
+  };
+  PartCoverage uncovered = kFullCoverage;
+  for (const PartCandidate& c : chosen) uncovered &= ~coverage_of(c.frame);
+  for (int f = 0; f < fallback_k && uncovered != 0; ++f) {
+    const PartCandidate* best = nullptr;
+    int best_gain = 0;
+    for (const PartCandidate& c : scored) {
+      const int gain = CoveredCells(coverage_of(c.frame) & uncovered);
+      if (gain > best_gain ||
+          (gain == best_gain && best && gain > 0 &&
+           (c.cost < best->cost || (c.cost == best->cost && c.frame < best->frame)))) {
+        best = &c;
+        best_gain = gain;
+      }
+    }
+    if (!best) break;
+    chosen.push_back({best->frame, best->cost, 0.0, true});
+    uncovered &= ~coverage_of(best->frame);
+  }
 }
 
 PartCandidates PartTextureIndex::Select(const Skeleton& viewer_skeleton,
@@ -165,6 +198,7 @@ PartCandidates PartTextureIndex::Select(const Skeleton& viewer_skeleton,
       history->previous[p].clear();
       for (const PartCandidate& c : chosen) history->previous[p].push_back(c.frame);
     }
+    if (options.fallback_k > 0) AppendFallbacks(p, options.fallback_k, scored, chosen);
   }
   return out;
 }

@@ -34,6 +34,16 @@
 // compete with their cost scaled by (1 - hysteresis), so a new frame takes over only when it
 // is better by that fraction; weights use the scaled costs too. Costs and descriptors in
 // metres; descriptors are computed once per stored frame at construction.
+//
+// Fallback candidates (issue 9): where none of the top_k candidates sees a point of the part
+// (another part in front of it there, or the depth disagrees), the renderer would take the
+// first usable one, whose texel there shows the occluder. Given each stored frame's coverage
+// of each part (part_coverage.h: the cells of the part's facing half it sees), up to
+// fallback_k more frames are appended greedily: each the frame that covers the most cells
+// none of the candidates so far covers (ties to the lower cost, then the lower frame index),
+// until no frame adds a cell. They carry weight 0, so the renderer's blend never uses them
+// where a ranked candidate is visible (common/render/texturing.h); hysteresis applies to
+// their costs as to every frame's, and the history keeps only the top_k.
 
 #include <array>
 #include <cstdint>
@@ -42,6 +52,7 @@
 #include <vector>
 
 #include "common/skeleton/skeleton.h"
+#include "common/texture/part_coverage.h"
 
 namespace reenact {
 
@@ -54,6 +65,7 @@ struct PartSelectionOptions {
   int top_k = 1;                      // candidates returned per part, [1, 8]
   double missing_joint_cost_m = 1.0;  // >= 0, finite
   double hysteresis = 0.0;            // [0, 1): cost discount of the previous frames
+  int fallback_k = 0;                 // fallback candidates appended per part, [0, 8]
 
   void Check() const;
 };
@@ -62,6 +74,7 @@ struct PartCandidate {
   int frame = -1;     // stored frame index
   double cost = 0;    // cost_p(n), metres, after the hysteresis discount
   double weight = 1;  // blending weight, the part's weights sum to 1
+  bool fallback = false;  // a fallback candidate (weight 0), after the top_k
 };
 
 using PartCandidates = std::array<std::vector<PartCandidate>, kBodyPartCount>;
@@ -88,9 +101,11 @@ class PartTextureIndex {
 
   // stored: skeletons, each in its own sensor frame. part_allowed (if not empty) has one
   // mask per stored frame, bit Index(p) set where the frame may texture part p (frames
-  // with mask 0 are never chosen). O(N) time and memory, about 1 kB per frame.
+  // with mask 0 are never chosen). coverage (if not empty) has one entry per stored frame;
+  // without it no fallback is chosen. O(N) time and memory, about 1 kB per frame.
   explicit PartTextureIndex(std::span<const Skeleton> stored,
-                            std::span<const uint16_t> part_allowed = {});
+                            std::span<const uint16_t> part_allowed = {},
+                            std::span<const PartCoverages> coverage = {});
 
   // cost_p(n) of one stored frame for one part; nullopt when n is not a candidate for p or
   // the viewer skeleton lacks one of p's joints.
@@ -98,8 +113,9 @@ class PartTextureIndex {
                              double missing_joint_cost_m = 1.0) const;
 
   // The top_k candidates of every part by ascending cost (ties to the lower frame index),
-  // with weights as above. A part the viewer skeleton lacks (either joint missing) or that
-  // no frame can texture gets no candidates. history (if not null) gives the previous
+  // with weights as above, then its fallback candidates (weight 0, fallback set). A part
+  // the viewer skeleton lacks (either joint missing) or that no frame can texture gets no
+  // candidates. history (if not null) gives the previous
   // frames for the hysteresis and receives this call's choice. O(N |J(p)|) per part.
   PartCandidates Select(const Skeleton& viewer_skeleton, const PartSelectionOptions& options,
                         PartSelectionHistory* history = nullptr) const;
@@ -110,7 +126,10 @@ class PartTextureIndex {
   struct Row {
     int frame = -1;
     PartDescriptor descriptor;
+    PartCoverage coverage = 0;
   };
+  void AppendFallbacks(int p, int fallback_k, std::span<const PartCandidate> scored,
+                       std::vector<PartCandidate>& chosen) const;
   int stored_count_ = 0;
   std::array<std::vector<Row>, kBodyPartCount> rows_;  // per part, candidates only
 };

@@ -82,7 +82,15 @@ const std::vector<QualityMethod>& QualityMethods() {
              "from the colours and depth normals of up to 25 stored frames "
              "(common/texture/subject_light.h)",
              false, Preset("relit")),
-      Method("all", "relit + steady motion: every step of issue 9 together", true, Preset("relit")),
+      Method("fallback",
+             "relit + fallback candidates: per part, up to 3 more stored frames chosen to see what "
+             "of the part's facing half the 3 ranked ones do not (a 12 x 5 grid of its surface, "
+             "each cell tested against every stored frame's part labels and depth at load; "
+             "common/texture/part_coverage.h), drawn only where no ranked candidate is visible and "
+             "the first usable one's texel is labelled as another part",
+             false, Preset("fallback")),
+      Method("all", "fallback + steady motion: every step of issue 9 together", true,
+             Preset("fallback")),
   };
   return methods;
 }

@@ -9,6 +9,7 @@
 #include "common/error/check.h"
 #include "common/model/cross_section_fit.h"
 #include "common/model/extension_fit.h"
+#include "common/texture/part_coverage.h"
 #include "common/texture/texture_mapping.h"
 #include "common/texture/visibility_maps.h"
 
@@ -69,6 +70,14 @@ void TexturingOptions::Check() const {
   REENACT_CHECK(selection == TextureSelection::kPerPart || candidates == 1,
                 "whole-body selection takes exactly one candidate; use per-part selection for "
                 "more");
+  REENACT_CHECK(
+      fallback_candidates >= 0 && candidates + fallback_candidates <= kMaxTextureCandidates,
+      "texturing fallback candidates must be >= 0 and, with the ranked candidates, at "
+      "most " +
+          std::to_string(kMaxTextureCandidates));
+  REENACT_CHECK(fallback_candidates == 0 ||
+                    (selection == TextureSelection::kPerPart && mode != TexturingMode::kFirst),
+                "fallback candidates need per-part selection and a visibility mode");
   REENACT_CHECK(hysteresis >= 0 && hysteresis < 1, "hysteresis must be in [0, 1)");
   REENACT_CHECK(std::isfinite(missing_joint_cost_m) && missing_joint_cost_m >= 0,
                 "missing_joint_cost_m must be finite and >= 0");
@@ -91,15 +100,15 @@ Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFr
     if (n >= 0 && n < manifest_.frame_count) usable_[n] = false;
   texture_index_ =
       TextureIndex(skeletons_in_sensor_, std::span<const bool>(usable_.get(), frames_.size()));
-  std::vector<uint16_t> part_allowed(frames_.size(), 0);
+  part_allowed_.assign(frames_.size(), 0);
   for (size_t n = 0; n < frames_.size(); ++n)
     if (usable_[n]) {
       const proto::ClipFrame& f = frames_[n];
-      part_allowed[n] = PartsInsideCrop(
+      part_allowed_[n] = PartsInsideCrop(
           skeletons_in_sensor_[n],
           manifest_.color_camera.Cropped(f.crop_x, f.crop_y, f.color.width, f.color.height));
     }
-  part_index_ = PartTextureIndex(skeletons_in_sensor_, part_allowed);
+  part_index_ = PartTextureIndex(skeletons_in_sensor_, part_allowed_);
 
   const auto fit_frames_of = [this](std::span<const int> indices,
                                     std::vector<PinholeCamera>& cameras) {
@@ -188,6 +197,23 @@ StoredTexture Reenactment::Texture(int n, BodyShape shape) const {
           std::move(normals)};
 }
 
+const PartTextureIndex& Reenactment::CoverageIndexOf(BodyShape shape) const {
+  CoverageIndex& entry = (*coverage_index_)[static_cast<size_t>(shape)];
+  std::call_once(entry.built, [&] {
+    const auto [extensions, shapes] = ShapeOf(shape);
+    std::vector<PartCoverages> coverage(frames_.size(), PartCoverages{});
+    for (size_t n = 0; n < frames_.size(); ++n) {
+      if (!part_allowed_[n]) continue;
+      const StoredTexture t = Texture(static_cast<int>(n), shape);
+      coverage[n] = CoverageOfFrame(
+          PoseCylinders(skeletons_in_sensor_[n], manifest_.radius_ratio, extensions, shapes),
+          t.camera, t.mask, t.part_labels, t.depth_m, kDefaultDepthToleranceM);
+    }
+    entry.index = PartTextureIndex(skeletons_in_sensor_, part_allowed_, coverage);
+  });
+  return entry.index;
+}
+
 ReenactedFrame Reenactment::Build(int k, const PinholeCamera& viewer_camera,
                                   const Eigen::Isometry3d& viewer_from_world,
                                   const std::function<int(int)>& texture_for_frame,
@@ -214,11 +240,14 @@ ReenactedFrame Reenactment::BuildPosed(int k, const Skeleton& skeleton_in_world,
   // Ranked stored frames (with weights) per part.
   PartCandidates chosen;
   if (texturing.selection == TextureSelection::kPerPart) {
-    chosen = part_index_.Select(viewer_skeleton,
-                                {.top_k = texturing.candidates,
-                                 .missing_joint_cost_m = texturing.missing_joint_cost_m,
-                                 .hysteresis = texturing.hysteresis},
-                                history);
+    const PartTextureIndex& index =
+        texturing.fallback_candidates > 0 ? CoverageIndexOf(texturing.shape) : part_index_;
+    chosen = index.Select(viewer_skeleton,
+                          {.top_k = texturing.candidates,
+                           .missing_joint_cost_m = texturing.missing_joint_cost_m,
+                           .hysteresis = texturing.hysteresis,
+                           .fallback_k = texturing.fallback_candidates},
+                          history);
     const auto& torso = chosen[Index(BodyPart::kUpperTorso)];
     out.texture_frame = torso.empty() ? -1 : torso.front().frame;
   } else {
@@ -254,6 +283,7 @@ ReenactedFrame Reenactment::BuildPosed(int k, const Skeleton& skeleton_in_world,
       const int texture = texture_for_frame(c.frame);
       if (texture < 0) continue;
       TextureCandidate candidate{texture, *m, c.weight};
+      candidate.fallback = c.fallback;
       if (relight) {
         // stored_light = R^T L_stored, R the rotation of the similarity m (texturing.h).
         const Eigen::Matrix3d sr = m->topLeftCorner<3, 3>();

@@ -14,8 +14,10 @@
 // viewer stream), and relit from their recorded pose to the shown one.
 
 #include <Eigen/Geometry>
+#include <array>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "common/filter/steady_motion.h"
@@ -60,6 +62,12 @@ struct TexturingOptions {
   TexturingMode mode = TexturingMode::kFirst;  // how the renderer uses the candidates
   // Candidates per part, [1, kMaxTextureCandidates]; whole-body selection takes exactly 1.
   int candidates = 1;
+  // Fallback candidates per part (part_selection.h PartSelectionOptions::fallback_k), drawn
+  // after the ranked ones: frames chosen to see what of the part the ranked candidates do not
+  // (part_coverage.h), used where no ranked one is visible and the first usable one's texel
+  // shows another part (texturing.h). Per-part selection with a visibility mode only;
+  // candidates + fallback_candidates at most kMaxTextureCandidates.
+  int fallback_candidates = 0;
   // Per-part selection: cost discount of the previous output frame's choice, [0, 1).
   double hysteresis = 0;
   double missing_joint_cost_m = 1.0;  // >= 0, as in Eq. 5
@@ -154,6 +162,16 @@ class Reenactment {
   TextureIndex texture_index_;  // Eq. 5 over usable S_n, exact as the scan
   // Per-part selection over usable frames, each part only where it lies inside the crop.
   PartTextureIndex part_index_;
+  // The same with every frame's coverage of each part (part_coverage.h) in the labels of a
+  // body shape, indexed by BodyShape; built on first use (fallback candidates).
+  struct CoverageIndex {
+    std::once_flag built;
+    PartTextureIndex index;
+  };
+  std::unique_ptr<std::array<CoverageIndex, 3>> coverage_index_ =
+      std::make_unique<std::array<CoverageIndex, 3>>();
+  std::vector<uint16_t> part_allowed_;
+  const PartTextureIndex& CoverageIndexOf(BodyShape shape) const;
   std::vector<Skeleton> steady_in_world_;  // the steady track, world frame
   PartExtensions part_extensions_{};
   PartShapes part_shapes_{};

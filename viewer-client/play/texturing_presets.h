@@ -11,6 +11,8 @@
 //              (BodyShape::kProfiled)
 //   relit      profile with every stored colour relit from its recorded pose to the shown one
 //              under the clip's fitted subject light (TexturingOptions::relight)
+//   fallback   relit with 3 fallback candidates per part, chosen to see what of the part the
+//              3 ranked ones do not (TexturingOptions::fallback_candidates)
 
 #include <string>
 #include <string_view>
@@ -21,9 +23,9 @@
 namespace reenact::viewer {
 
 // The viewer's default (reenact-viewer play, reenact-bench viewer): the step with the lowest
-// wrong-part rate at every view and the best PSNR and SSIM at every view from 90 degrees on
-// in docs/measurements.md (relit; equal to profile at 0 degrees), at the same frame rate.
-inline constexpr std::string_view kDefaultTexturingPreset = "relit";
+// wrong-part rates from 30 degrees on and the best PSNR and SSIM at every view from 90 degrees
+// on in docs/measurements.md (fallback; equal to relit at 0 degrees), at the same frame rate.
+inline constexpr std::string_view kDefaultTexturingPreset = "fallback";
 
 // The names above, in that order, comma separated (for usage messages).
 std::string TexturingPresetNames();

@@ -19,8 +19,8 @@ std::vector<ReferencePart> ReferencePartsOf(
     if (frame.textured)
       for (const TextureCandidate& t : c.candidates) {
         const ReferenceTexture source = texture(t.texture);
-        part.candidates.push_back(
-            {source.crop, source.stored_frame, t.stored_from_viewer, t.weight, t.stored_light});
+        part.candidates.push_back({source.crop, source.stored_frame, t.stored_from_viewer, t.weight,
+                                   t.stored_light, t.fallback});
       }
     parts.push_back(std::move(part));
   }

@@ -53,7 +53,8 @@ struct Renderer::Impl {
     GLint projection = -1, model = -1, normal = -1, ring_width = -1, ring_depth = -1,
           ring_width_slope = -1, ring_depth_slope = -1, textured = -1, color = -1, stored = -1,
           intrinsics = -1, size = -1, relight = -1, light = -1, stored_light = -1;
-    GLint mode = -1, weight = -1, label = -1, depth_tolerance = -1;  // visible variants only
+    GLint mode = -1, ranked = -1, weight = -1, label = -1,
+          depth_tolerance = -1;  // visible variants only
   };
   std::array<CylinderProgram, 1 + kMaxTextureCandidates> cylinder_programs;
   GlProgram floor_program, background_program, overlay_program;
@@ -147,6 +148,7 @@ Status Renderer::Impl::Initialize(int w, int h) {
     c.stored_light = UniformLocation(p, "u_stored_light");
     if (visibility) {
       c.mode = UniformLocation(p, "u_mode");
+      c.ranked = UniformLocation(p, "u_ranked");
       c.weight = UniformLocation(p, "u_weight");
       c.label = UniformLocation(p, "u_part_label");
       c.depth_tolerance = UniformLocation(p, "u_depth_tolerance");
@@ -362,6 +364,10 @@ void Renderer::Impl::DrawCylinders(const FrameDraw& frame,
       glUniform3fv(program.stored_light, count, stored_light.data());
       if (visibility) {
         glUniform1i(program.mode, static_cast<int>(c.texturing));
+        glUniform1i(program.ranked, static_cast<int>(std::count_if(
+                                        c.candidates.begin(), c.candidates.end(),
+                                        [](const TextureCandidate& t) { return !t.fallback; })));
+
         glUniform1f(program.label, static_cast<float>(PartLabel(c.part)));
         glUniform1fv(program.weight, count, weight.data());
       }
@@ -463,7 +469,7 @@ int Renderer::UploadTexture(const StoredTexture& texture) {
                GL_UNSIGNED_BYTE, rgba.data());
   std::vector<float> data(static_cast<size_t>(color.width) * color.height * 4, 0.0f);
   for (size_t i = 0, n = static_cast<size_t>(color.width) * color.height; i < n; ++i) {
-    if (!texture.part_labels.empty()) data[4 * i] = texture.part_labels.data[i];
+    data[4 * i] = texture.part_labels.empty() ? -1.0f : texture.part_labels.data[i];
     if (!texture.depth_m.empty()) data[4 * i + 1] = texture.depth_m.data[i];
     const Eigen::Vector3f normal =
         texture.normals.empty()
@@ -521,7 +527,10 @@ void Renderer::Draw(const FrameDraw& frame) {
     REENACT_CHECK(c.candidates.size() <= static_cast<size_t>(kMaxTextureCandidates),
                   "a cylinder has at most " + std::to_string(kMaxTextureCandidates) +
                       " texture candidates");
-    for (const TextureCandidate& t : c.candidates) {
+    for (size_t i = 0; i < c.candidates.size(); ++i) {
+      const TextureCandidate& t = c.candidates[i];
+      REENACT_CHECK(t.fallback || i == 0 || !c.candidates[i - 1].fallback,
+                    "fallback candidates must follow every ranked one");
       REENACT_CHECK(t.stored_from_viewer.allFinite(), "stored_from_viewer must be finite");
       REENACT_CHECK(std::isfinite(t.weight) && t.weight >= 0,
                     "candidate weights must be finite and >= 0");

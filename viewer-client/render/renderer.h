@@ -60,6 +60,8 @@ struct TextureCandidate {
   // The subject light as this stored frame saw it, in the viewer frame (relighting,
   // common/render/texturing.h); finite. Zero with FrameDraw::subject_light zero: no relighting.
   Eigen::Vector3d stored_light = Eigen::Vector3d::Zero();
+  // A fallback candidate (common/render/texturing.h): after every ranked one.
+  bool fallback = false;
 };
 
 // One body-part cylinder to draw.
@@ -72,7 +74,8 @@ struct CylinderDraw {
   // (orthogonal to the axis; nullopt: the helper rule of common/render/cylinder_mesh.h).
   PartShape shape{};
   std::optional<Eigen::Vector3d> width_direction{};
-  // Ranked texture candidates, at most kMaxTextureCandidates; empty = untextured.
+  // Texture candidates, ranked then fallback ones, at most kMaxTextureCandidates; empty =
+  // untextured.
   std::vector<TextureCandidate> candidates;
   BodyPart part = BodyPart::kHead;  // the body part modelled (visibility test (a))
   TexturingMode texturing = TexturingMode::kFirst;
@@ -130,8 +133,9 @@ class Renderer {
   ~Renderer();
 
   // Uploads a crop (premultiplied RGBA: mask in alpha, linear filtering) and its visibility
-  // and normal data (one RGBA32F texture: label, depth in metres, the normal's octahedral
-  // coordinates or 4 where none; nearest sampling) and returns its index, counting from 0.
+  // and normal data (one RGBA32F texture: label or -1 without labels, depth in metres, the
+  // normal's octahedral coordinates or 4 where none; nearest sampling) and returns its index,
+  // counting from 0.
   // Preconditions (CHECK): colour has 3 channels, mask 1 channel and the same size, not empty,
   // camera has the crop's size and passes Check(), part labels and depth each empty or 1
   // channel and normals empty or 3 channels of the crop's size and finite.

@@ -37,8 +37,11 @@ void main() {
 }
 )";
 
-// After "#version 330 core" and the defines CANDIDATES (1..3) and VISIBILITY (0 or 1).
-const char* const kCylinderFragmentBody = R"(
+// After "#version 330 core", the defines CANDIDATES (1..kMaxTextureCandidates) and VISIBILITY
+// (0 or 1), and the samplers u_texture<i>, u_visibility<i> of every candidate (CylinderFragment
+// declares them; GLSL 3.30 indexes sampler arrays by constants only). Ends in main()'s head;
+// CylinderFragment appends one line per candidate and the tail.
+const char* const kCylinderFragmentHead = R"(
 in vec3 v_position;
 in vec3 v_normal;
 uniform int u_textured;
@@ -49,21 +52,12 @@ uniform vec2 u_texture_size[CANDIDATES];
 uniform int u_relight;
 uniform vec3 u_light;
 uniform vec3 u_stored_light[CANDIDATES];
-uniform sampler2D u_texture0;
-uniform sampler2D u_visibility0;
 #if VISIBILITY
 uniform int u_mode;
+uniform int u_ranked;
 uniform float u_weight[CANDIDATES];
 uniform float u_part_label;
 uniform float u_depth_tolerance;
-#endif
-#if CANDIDATES > 1
-uniform sampler2D u_texture1;
-uniform sampler2D u_visibility1;
-#endif
-#if CANDIDATES > 2
-uniform sampler2D u_texture2;
-uniform sampler2D u_visibility2;
 #endif
 layout(location = 0) out vec4 out_color;
 
@@ -79,7 +73,8 @@ vec3 OctahedralDecode(vec2 e) {
   return normalize(n);
 }
 
-// 0: unusable, 1: usable, 2: usable and visible.
+// 0: unusable, 1: usable and labelled as another part, 2: usable, not visible otherwise (the
+// depth disagrees, or the crop has no labels: label -1), 3: visible.
 int Candidate(int i, sampler2D tex, sampler2D vis, out vec3 rgb) {
   rgb = vec3(0.0);
   vec4 ps = u_stored_from_viewer[i] * vec4(v_position, 1.0);
@@ -102,13 +97,63 @@ int Candidate(int i, sampler2D tex, sampler2D vis, out vec3 rgb) {
     rgb *= Shade(n, u_light) / Shade(n, u_stored_light[i]);
   }
 #if VISIBILITY
-  if (data.r != u_part_label) return 1;
-  if (data.g > 0.0 && !(abs(data.g - p.z) <= u_depth_tolerance)) return 1;
-  return 2;
+  if (data.r != u_part_label) return data.r < 0.0 ? 2 : 1;
+  if (data.g > 0.0 && !(abs(data.g - p.z) <= u_depth_tolerance)) return 2;
+  return 3;
 #else
   return 1;
 #endif
 }
+
+// The candidates seen so far in rank order: the weighted sum of the visible ranked ones (blend
+// mode), the first visible and the first usable ranked colour, the first visible fallback.
+float g_total = 0.0;
+vec3 g_sum = vec3(0.0);
+bool g_visible = false;
+vec3 g_visible_rgb = vec3(0.0);
+bool g_usable = false;
+bool g_usable_other = false;
+vec3 g_usable_rgb = vec3(0.0);
+bool g_fallback = false;
+vec3 g_fallback_rgb = vec3(0.0);
+
+#if VISIBILITY
+// Whether candidate i can still change the colour (common/render/texturing.h's modes): a
+// ranked one in the blend mode while it has weight, or while no visible candidate has been
+// seen; in the first-visible mode while no visible candidate has been seen. A fallback one
+// (i >= u_ranked) only where no ranked one is visible, the first usable ranked one shows
+// another part, and no earlier fallback is visible.
+bool Needed(int i) {
+  if (i >= u_ranked)
+    return !g_visible && !g_fallback && g_usable_other;
+  return u_mode == 2 ? (u_weight[i] > 0.0 || (g_total == 0.0 && !g_visible)) : !g_visible;
+}
+
+void Take(int i, int state, vec3 rgb) {
+  if (i >= u_ranked) {
+    if (state == 3) {
+      g_fallback = true;
+      g_fallback_rgb = rgb;
+    }
+    return;
+  }
+  if (state == 0) return;
+  if (!g_usable) {
+    g_usable = true;
+    g_usable_other = state == 1;
+    g_usable_rgb = rgb;
+  }
+  if (state != 3) return;
+  if (!g_visible) {
+    g_visible = true;
+    g_visible_rgb = rgb;
+  }
+  if (u_mode == 2 && u_weight[i] > 0.0) {
+    g_total += u_weight[i];
+    g_sum += u_weight[i] * rgb;
+  }
+}
+#endif
 
 void main() {
   if (u_textured == 0) {
@@ -118,47 +163,25 @@ void main() {
     out_color = vec4(u_color * (0.35 + 0.65 * lambert), 1.0);
     return;
   }
-#if !VISIBILITY
-  vec3 rgb0;
-  if (Candidate(0, u_texture0, u_visibility0, rgb0) == 0) discard;
-  out_color = vec4(rgb0, 1.0);
+  vec3 rgb;
+)";
+
+const char* const kCylinderFragmentTail = R"(
+#if VISIBILITY
+  if (g_total > 0.0) {
+    out_color = vec4(g_sum / g_total, 1.0);
+  } else if (g_visible) {
+    out_color = vec4(g_visible_rgb, 1.0);
+  } else if (g_fallback) {
+    out_color = vec4(g_fallback_rgb, 1.0);
+  } else if (g_usable) {
+    out_color = vec4(g_usable_rgb, 1.0);
+  } else {
+    discard;
+  }
 #else
-  vec3 rgb[CANDIDATES];
-  int state[CANDIDATES];
-  state[0] = Candidate(0, u_texture0, u_visibility0, rgb[0]);
-#if CANDIDATES > 1
-  state[1] = Candidate(1, u_texture1, u_visibility1, rgb[1]);
-#endif
-#if CANDIDATES > 2
-  state[2] = Candidate(2, u_texture2, u_visibility2, rgb[2]);
-#endif
-  if (u_mode == 2) {
-    float total = 0.0;
-    vec3 sum = vec3(0.0);
-    for (int i = 0; i < CANDIDATES; ++i) {
-      if (state[i] == 2 && u_weight[i] > 0.0) {
-        total += u_weight[i];
-        sum += u_weight[i] * rgb[i];
-      }
-    }
-    if (total > 0.0) {
-      out_color = vec4(sum / total, 1.0);
-      return;
-    }
-  }
-  for (int i = 0; i < CANDIDATES; ++i) {
-    if (state[i] == 2) {
-      out_color = vec4(rgb[i], 1.0);
-      return;
-    }
-  }
-  for (int i = 0; i < CANDIDATES; ++i) {
-    if (state[i] == 1) {
-      out_color = vec4(rgb[i], 1.0);
-      return;
-    }
-  }
-  discard;
+  if (Candidate(0, u_texture0, u_visibility0, rgb) == 0) discard;
+  out_color = vec4(rgb, 1.0);
 #endif
 }
 )";
@@ -170,8 +193,20 @@ std::string CylinderVertex(int rings) {
 }
 
 std::string CylinderFragment(int candidates, bool visibility) {
-  return "#version 330 core\n#define CANDIDATES " + std::to_string(candidates) +
-         "\n#define VISIBILITY " + (visibility ? "1" : "0") + "\n" + kCylinderFragmentBody;
+  std::string source = "#version 330 core\n#define CANDIDATES " + std::to_string(candidates) +
+                       "\n#define VISIBILITY " + (visibility ? "1" : "0") + "\n";
+  for (int i = 0; i < candidates; ++i) {
+    const std::string n = std::to_string(i);
+    source += "uniform sampler2D u_texture" + n + ";\nuniform sampler2D u_visibility" + n + ";\n";
+  }
+  source += kCylinderFragmentHead;
+  if (visibility)
+    for (int i = 0; i < candidates; ++i) {
+      const std::string n = std::to_string(i);
+      source += "  if (Needed(" + n + ")) Take(" + n + ", Candidate(" + n + ", u_texture" + n +
+                ", u_visibility" + n + ", rgb), rgb);\n";
+    }
+  return source + kCylinderFragmentTail;
 }
 
 const char* const kFloorVertex = R"(#version 330 core

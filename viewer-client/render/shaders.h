@@ -13,19 +13,21 @@ namespace reenact::viewer::shaders {
 // z) placed by u_viewer_from_cylinder; side normal (D c, W s, -(W D' s^2 + D W' c^2)) with W, D the
 // ring's width and depth, W', D' u_ring_width_slope[k], u_ring_depth_slope[k] (RingSlope), cap
 // normal as given; both into the viewer frame by u_normal_from_cylinder (NormalFromUnitCylinder).
-// The fragment program is built per variant by CylinderFragment: `candidates` (1..3) texture
-// candidates, `visibility` off for TexturingMode::kFirst (one candidate, no visibility texture) and
+// The fragment program is built per variant by CylinderFragment: `candidates`
+// (1..kMaxTextureCandidates) texture candidates, `visibility` off for TexturingMode::kFirst (one candidate, no visibility texture) and
 // on for the visible modes (u_mode 1 kFirstVisible, 2 kBlendVisible), so that the thesis path pays
 // nothing for the others (llvmpipe runs both sides of a branch). The rules are those of
 // common/render/texturing.h; candidate i is given by u_stored_from_viewer[i], u_intrinsics[i] =
 // (fx, fy, cx, cy), u_texture_size[i] = (w, h), u_weight[i], its premultiplied RGBA crop
-// u_texture<i> (bilinear) and its visibility texture u_visibility<i> (RG32F: part label, depth in
-// metres; texelFetch at the nearest texel). Per fragment at viewer-frame point p:
-// p_s = u_stored_from_viewer[i] p; u = fx x/z + cx, v = fy y/z + cy; texture coordinate
+// u_texture<i> (bilinear) and its visibility texture u_visibility<i> (RGBA32F: part label or -1,
+// depth in metres, stored normal; texelFetch at the nearest texel). Per fragment at viewer-frame
+// point p: p_s = u_stored_from_viewer[i] p; u = fx x/z + cx, v = fy y/z + cy; texture coordinate
 // ((u + 0.5)/w, (v + 0.5)/h); unusable if p_s.z <= 0, outside the crop, or the sampled mask
 // (alpha) < 0.5; else the colour is the sample divided by its alpha (so background texels do not
 // bleed into the subject); visible if usable, the label equals u_part_label and the depth is 0 or
-// within u_depth_tolerance of p_s.z. No candidate colours it: discard. Flat mode
+// within u_depth_tolerance of p_s.z. Candidates [0, u_ranked) are ranked, the rest fallbacks.
+// The visible modes sample candidates in rank order and skip one that can no longer change the
+// colour (a fallback wherever a ranked one is visible). No candidate colours it: discard. Flat mode
 // (u_textured == 0): Lambert shading of u_color under a headlight. Writes alpha 1: the renderer's
 // subject mask.
 std::string CylinderVertex(int rings);

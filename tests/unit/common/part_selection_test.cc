@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -187,11 +188,85 @@ TEST(PartSelection, DegenerateGeometryGivesFiniteDescriptors) {
     }
 }
 
+// The cells at angles [first, last] of the facing half, every height.
+PartCoverage Angles(int first, int last, int height_first = 0,
+                    int height_last = kCoverageHeights - 1) {
+  PartCoverage out = 0;
+  for (int i = first; i <= last; ++i)
+    for (int j = height_first; j <= height_last; ++j)
+      out |= PartCoverage{1} << (i * kCoverageHeights + j);
+  return out;
+}
+
+TEST(PartSelection, FallbacksCoverWhatTheRankedCandidatesDoNotSee) {
+  const std::vector<Skeleton> stored = TurningClip();
+  const Skeleton viewer = LeftArmOut(3.0, Deg(62));
+  constexpr BodyPart kPart = BodyPart::kLeftForearm;
+  const PartSelectionOptions ranked{.top_k = 3};
+  const std::vector<PartCandidate> main =
+      PartTextureIndex(stored).Select(viewer, ranked)[Index(kPart)];
+  ASSERT_EQ(main.size(), 3u);
+
+  // Every frame sees the left half of the part's facing half; three others see more of the
+  // right half: A heights 0-3, B heights 3-4, C height 4, with C cheaper than B.
+  std::vector<std::pair<double, int>> others;
+  for (int n = 0; n < static_cast<int>(stored.size()); ++n)
+    if (std::none_of(main.begin(), main.end(),
+                     [n](const PartCandidate& c) { return c.frame == n; }))
+      others.push_back({*PartTextureIndex(stored).Cost(kPart, viewer, n), n});
+  std::sort(others.begin(), others.end());
+  const int a = others.back().second, c = others[5].second, b = others[10].second;
+  const int half = kCoverageAngles / 2;
+  std::vector<PartCoverages> coverage(stored.size(), PartCoverages{});
+  for (PartCoverages& frame : coverage) frame[Index(kPart)] = Angles(0, half - 1);
+  coverage[a][Index(kPart)] |= Angles(half, kCoverageAngles - 1, 0, 3);
+  coverage[b][Index(kPart)] |= Angles(half, kCoverageAngles - 1, 3, 4);
+  coverage[c][Index(kPart)] |= Angles(half, kCoverageAngles - 1, 4, 4);
+  const PartTextureIndex index(stored, {}, coverage);
+
+  PartSelectionOptions options = ranked;
+  options.fallback_k = 3;
+  const PartCandidates chosen = index.Select(viewer, options);
+  const std::vector<PartCandidate>& part = chosen[Index(kPart)];
+  // The ranked three unchanged; then A (the most cells, though the dearest frame), then of B
+  // and C, which both add the last row, the cheaper C; then nothing is left to cover.
+  ASSERT_EQ(part.size(), 5u);
+  for (size_t i = 0; i < main.size(); ++i) {
+    EXPECT_EQ(part[i].frame, main[i].frame);
+    EXPECT_DOUBLE_EQ(part[i].weight, main[i].weight);
+    EXPECT_FALSE(part[i].fallback);
+  }
+  EXPECT_EQ(part[3].frame, a);
+  EXPECT_EQ(part[4].frame, c);
+  for (size_t i = 3; i < part.size(); ++i) {
+    EXPECT_TRUE(part[i].fallback);
+    EXPECT_EQ(part[i].weight, 0.0);
+  }
+  // With one fallback allowed, only A.
+  options.fallback_k = 1;
+  EXPECT_EQ(index.Select(viewer, options)[Index(kPart)].size(), 4u);
+  // Parts without coverage (every other one here) get no fallback.
+  EXPECT_EQ(chosen[Index(BodyPart::kRightForearm)].size(), 3u);
+}
+
+TEST(PartSelection, NoFallbackWhereTheRankedCandidatesSeeEverything) {
+  const std::vector<Skeleton> stored = TurningClip();
+  std::vector<PartCoverages> coverage(stored.size(), PartCoverages{});
+  for (PartCoverages& frame : coverage) frame.fill(kFullCoverage);
+  const PartTextureIndex index(stored, {}, coverage);
+  const PartCandidates chosen =
+      index.Select(LeftArmOut(3.0, Deg(62)), {.top_k = 2, .fallback_k = 4});
+  for (int p = 0; p < kBodyPartCount; ++p) EXPECT_EQ(chosen[p].size(), 2u) << p;
+  EXPECT_THROW(PartTextureIndex(stored, {}, std::vector<PartCoverages>(3)), CheckError);
+}
+
 TEST(PartSelection, OptionsAreChecked) {
   EXPECT_THROW(PartSelectionOptions{.top_k = 0}.Check(), CheckError);
   EXPECT_THROW(PartSelectionOptions{.top_k = 9}.Check(), CheckError);
   EXPECT_THROW(PartSelectionOptions{.missing_joint_cost_m = -1}.Check(), CheckError);
   EXPECT_THROW(PartSelectionOptions{.hysteresis = 1.0}.Check(), CheckError);
+  EXPECT_THROW(PartSelectionOptions{.fallback_k = -1}.Check(), CheckError);
+  EXPECT_THROW(PartSelectionOptions{.fallback_k = 9}.Check(), CheckError);
   EXPECT_NO_THROW(PartSelectionOptions{}.Check());
 }
 

@@ -187,9 +187,89 @@ TEST(ReferenceTexturing, BlendWithZeroWeightsFallsBackToTheFirstVisible) {
   });
 }
 
+// The torso with `ranked` candidates and then `fallbacks`, in `mode`.
+ReferencePart TorsoWithFallbacks(TexturingMode mode,
+                                 const std::vector<const ReferenceCrop*>& ranked,
+                                 const std::vector<const ReferenceCrop*>& fallbacks) {
+  std::vector<const ReferenceCrop*> crops = ranked;
+  crops.insert(crops.end(), fallbacks.begin(), fallbacks.end());
+  ReferencePart part = Torso(mode, crops);
+  for (size_t i = ranked.size(); i < crops.size(); ++i) {
+    part.candidates[i].fallback = true;
+    part.candidates[i].weight = 0;
+  }
+  return part;
+}
+
+TEST(ReferenceTexturing, AFallbackReplacesARankedTexelThatShowsAnotherPart) {
+  // The ranked candidate's texels show the arm (in front of the torso there); of the two
+  // fallbacks, the first shows the arm too, the second the torso: the second colours.
+  const ReferenceCrop arm_red = Crop(200, 0, 0, kArm, 1.0f);
+  const ReferenceCrop arm_blue = Crop(0, 0, 200, kArm, 1.0f);
+  const ReferenceCrop green = Crop(0, 200, 0, kTorso, 1.0f);
+  for (TexturingMode mode : {TexturingMode::kFirstVisible, TexturingMode::kBlendVisible}) {
+    const ReferenceRender r = Render(TorsoWithFallbacks(mode, {&arm_red}, {&arm_blue, &green}));
+    EXPECT_GT(ForEachCapPixel([&](int x, int y) {
+                ASSERT_EQ(r.color.at(x, y, 1), 200);
+                ASSERT_EQ(r.source_frame.at(x, y, 0), 12);
+                ASSERT_EQ(r.source_weight.at(x, y, 0), 1.0f);
+                ASSERT_EQ(r.source_frame.at(x, y, 1), -1);
+              }),
+              2000);
+    // Without a visible fallback, the first usable ranked candidate as before.
+    const ReferenceRender none = Render(TorsoWithFallbacks(mode, {&arm_red}, {&arm_blue}));
+    ForEachCapPixel([&](int x, int y) { ASSERT_EQ(none.color.at(x, y, 0), 200); });
+  }
+}
+
+TEST(ReferenceTexturing, AFallbackNeverReplacesAVisibleOrThisPartsTexelNorWidensTheSilhouette) {
+  ReferenceRenderOptions options;
+  options.depth_tolerance_m = 0.1;
+  const ReferenceCrop green = Crop(0, 200, 0, kTorso, 1.0f);
+  // Visible ranked candidate: its colour.
+  const ReferenceCrop red = Crop(200, 0, 0, kTorso, 1.0f);
+  // This part's label, but the stored depth 0.5 m off: not visible, yet not an occluder.
+  const ReferenceCrop red_far = Crop(200, 0, 0, kTorso, 1.5f);
+  // Another part's label, but off the subject on the left half: unusable there.
+  ReferenceCrop arm_half = Crop(200, 0, 0, kArm, 1.0f);
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 84; ++x) arm_half.mask.at(x, y) = 0;
+  for (TexturingMode mode : {TexturingMode::kFirstVisible, TexturingMode::kBlendVisible}) {
+    for (const ReferenceCrop* ranked : {&red, &red_far}) {
+      const ReferenceRender r = Render(TorsoWithFallbacks(mode, {ranked}, {&green}), options);
+      ForEachCapPixel([&](int x, int y) { ASSERT_EQ(r.color.at(x, y, 0), 200); });
+    }
+    const ReferenceRender r = Render(TorsoWithFallbacks(mode, {&arm_half}, {&green}), options);
+    ForEachCapPixel([&](int x, int y) {
+      ASSERT_EQ(r.mask.at(x, y), x < 84 ? 0 : 255) << x;  // no ranked texel: discarded
+      if (x >= 84) {
+        ASSERT_EQ(r.color.at(x, y, 1), 200) << x;
+      }
+    });
+  }
+  // kFirst ignores every candidate past the first, fallbacks too.
+  const ReferenceRender first =
+      Render(TorsoWithFallbacks(TexturingMode::kFirst, {&arm_half}, {&green}), options);
+  ForEachCapPixel([&](int x, int y) {
+    ASSERT_EQ(first.mask.at(x, y), x < 84 ? 0 : 255) << x;
+    if (x >= 84) {
+      ASSERT_EQ(first.color.at(x, y, 0), 200) << x;
+    }
+  });
+}
+
+TEST(ReferenceTexturing, RejectsARankedCandidateAfterAFallback) {
+  const ReferenceCrop red = Crop(200, 0, 0, kTorso, 1.0f);
+  ReferencePart part = TorsoWithFallbacks(TexturingMode::kBlendVisible, {&red}, {&red});
+  std::swap(part.candidates[0], part.candidates[1]);
+  EXPECT_THROW(Render(part), CheckError);
+}
+
 TEST(ReferenceTexturing, RejectsMoreCandidatesThanTheMaximum) {
   const ReferenceCrop red = Crop(200, 0, 0, kTorso, 1.0f);
-  EXPECT_THROW(Render(Torso(TexturingMode::kFirst, {&red, &red, &red, &red})), CheckError);
+  EXPECT_THROW(Render(Torso(TexturingMode::kFirst,
+                            std::vector<const ReferenceCrop*>(kMaxTextureCandidates + 1, &red))),
+               CheckError);
 }
 
 TEST(ReferenceTexturing, RejectsANegativeOrNonFiniteWeight) {

@@ -138,27 +138,38 @@ INSTANTIATE_TEST_SUITE_P(OrbitAngles, GlReferenceAgreement, ::testing::Values(0.
 
 // The occlusion-aware modes (common/render/texturing.h): every cylinder gets three
 // candidates, Eq. 5's frame and two others of the clip, weights 1, 2, 3, each stored frame
-// uploaded with its part-label map and depth (Reenactment::Texture).
+// uploaded with its part-label map and depth (Reenactment::Texture); with fallbacks, three
+// more of weight 0 (the most the renderers take), which colour only where none of the three
+// is visible.
 struct ModeCase {
   TexturingMode mode;
   double angle_deg;
+  bool fallbacks = false;
 };
 
-// Every cylinder of the frame gets three candidates: Eq. 5's frame n0 and the frames 20 and 40
-// later (cyclically), weights 1, 2, 3, in the given mode.
-void GiveThreeCandidates(const Reenactment& clip, int n0, TexturingMode mode,
-                         const std::function<int(int)>& texture_for_frame, FrameDraw& draw) {
-  const std::vector<int> stored_frames = {n0, (n0 + 20) % 60, (n0 + 40) % 60};
+// Every cylinder of the frame gets candidates from Eq. 5's frame n0 and the frames 20 and 40
+// later (cyclically), weights 1, 2, 3, in the given mode; with fallbacks, then the frames 10,
+// 30 and 50 later as fallbacks (weight 0).
+void GiveCandidates(const Reenactment& clip, int n0, TexturingMode mode,
+                    const std::function<int(int)>& texture_for_frame, FrameDraw& draw,
+                    bool fallbacks = false) {
+  std::vector<std::pair<int, double>> stored_frames = {
+      {n0, 1.0}, {(n0 + 20) % 60, 2.0}, {(n0 + 40) % 60, 3.0}};
+  if (fallbacks)
+    for (int later : {10, 30, 50}) stored_frames.push_back({(n0 + later) % 60, 0.0});
   for (CylinderDraw& c : draw.cylinders) {
     c.texturing = mode;
     c.candidates.clear();
     const auto [ja, jb] = PartJoints(c.part);
-    for (size_t i = 0; i < stored_frames.size(); ++i) {
-      const proto::ClipFrame& f = clip.frame(stored_frames[i]);
+    for (const auto& [n, weight] : stored_frames) {
+      const proto::ClipFrame& f = clip.frame(n);
       const Skeleton stored = f.skeleton_in_world.Transformed(f.world_from_sensor.inverse());
       if (!stored.HasPart(c.part)) continue;
-      if (auto m = StoredFromViewerMapping(c.a, c.b, stored[ja], stored[jb]))
-        c.candidates.push_back({texture_for_frame(stored_frames[i]), *m, 1.0 + i});
+      if (auto m = StoredFromViewerMapping(c.a, c.b, stored[ja], stored[jb])) {
+        TextureCandidate candidate{texture_for_frame(n), *m, weight};
+        candidate.fallback = weight == 0;
+        c.candidates.push_back(candidate);
+      }
     }
   }
 }
@@ -170,8 +181,9 @@ TEST_P(GlReferenceModeAgreement, CandidatesAndVisibilityAgreeWithTheCpuReference
   ForEachOrbitFrame(param.angle_deg, [param](int k, ReenactedFrame& frame, Renderer& renderer,
                                              UploadedFrames& uploaded) {
     const int n0 = frame.texture_frame;
-    GiveThreeCandidates(
-        RecordedClip(), n0, param.mode, [&uploaded](int n) { return uploaded(n); }, frame.draw);
+    GiveCandidates(
+        RecordedClip(), n0, param.mode, [&uploaded](int n) { return uploaded(n); }, frame.draw,
+        param.fallbacks);
     const RenderedFrame gl = renderer.Render(frame.draw);
     const ReferenceRender ref = uploaded.RenderReferenceOf(frame.draw);
     for (const auto& [texture, crop] : uploaded.crop_of_texture) {
@@ -179,13 +191,27 @@ TEST_P(GlReferenceModeAgreement, CandidatesAndVisibilityAgreeWithTheCpuReference
       EXPECT_FALSE(crop.depth_m.empty());
     }
 
-    // The modes must act: pixels coloured past candidate 0, or blended.
-    int past_first = 0, blended = 0;
+    // The modes must act: pixels coloured past candidate 0, or blended; fallbacks used where
+    // no weighted candidate is visible, and only there (never blended).
+    int past_first = 0, blended = 0, fallback = 0;
+    const auto is_fallback = [n0](int n) {
+      return n == (n0 + 10) % 60 || n == (n0 + 30) % 60 || n == (n0 + 50) % 60;
+    };
     for (int y = 0; y < kHeight; ++y)
       for (int x = 0; x < kWidth; ++x) {
         past_first += ref.source_frame.at(x, y, 0) >= 0 && ref.source_frame.at(x, y, 0) != n0;
         blended += ref.source_frame.at(x, y, 1) >= 0;
+        if (!param.fallbacks) continue;
+        for (int j = 0; j < kMaxTextureCandidates; ++j) {
+          const int n = ref.source_frame.at(x, y, j);
+          if (n < 0 || !is_fallback(n)) continue;
+          ++fallback;
+          EXPECT_EQ(j, 0);  // alone
+        }
       }
+    if (param.fallbacks) {
+      EXPECT_GT(fallback, 100) << "k " << k;
+    }
     if (param.mode == TexturingMode::kBlendVisible) {
       EXPECT_GT(blended, 500) << "k " << k;
     } else {
@@ -200,7 +226,9 @@ INSTANTIATE_TEST_SUITE_P(Modes, GlReferenceModeAgreement,
                          ::testing::Values(ModeCase{TexturingMode::kFirstVisible, 0.0},
                                            ModeCase{TexturingMode::kFirstVisible, 90.0},
                                            ModeCase{TexturingMode::kBlendVisible, 0.0},
-                                           ModeCase{TexturingMode::kBlendVisible, 90.0}));
+                                           ModeCase{TexturingMode::kBlendVisible, 90.0},
+                                           ModeCase{TexturingMode::kBlendVisible, 90.0, true},
+                                           ModeCase{TexturingMode::kFirstVisible, 90.0, true}));
 
 }  // namespace
 }  // namespace reenact::viewer
@@ -249,7 +277,7 @@ TEST_P(GlReferenceShapedAgreement, ShapedCylindersAgreeWithTheCpuReference) {
                                              UploadedFrames& uploaded) {
     frame.draw.textured = param.textured;
     if (param.mode != TexturingMode::kFirst)
-      GiveThreeCandidates(
+      GiveCandidates(
           RecordedClip(), frame.texture_frame, param.mode,
           [&uploaded](int n) { return uploaded(n); }, frame.draw);
     const ReferenceRender plain = uploaded.RenderReferenceOf(frame.draw);

@@ -125,6 +125,25 @@ TEST(ReenactmentTexturing, OptionsAreChecked) {
                     .Check()),
                CheckError);
   EXPECT_THROW((TexturingOptions{.hysteresis = 1}.Check()), CheckError);
+  // Fallbacks: within the renderers' candidates, per part, with a visibility mode.
+  constexpr TexturingOptions kFallback{.selection = TextureSelection::kPerPart,
+                                       .mode = TexturingMode::kBlendVisible,
+                                       .candidates = 3,
+                                       .fallback_candidates = kMaxTextureCandidates - 3};
+  EXPECT_NO_THROW(kFallback.Check());
+  TexturingOptions bad = kFallback;
+  bad.fallback_candidates = kMaxTextureCandidates - 2;
+  EXPECT_THROW(bad.Check(), CheckError);
+  bad = kFallback;
+  bad.fallback_candidates = -1;
+  EXPECT_THROW(bad.Check(), CheckError);
+  bad = kFallback;
+  bad.mode = TexturingMode::kFirst;
+  EXPECT_THROW(bad.Check(), CheckError);
+  bad = kFallback;
+  bad.selection = TextureSelection::kWholeBody;
+  bad.candidates = 1;
+  EXPECT_THROW(bad.Check(), CheckError);
   EXPECT_THROW((TexturingOptions{.missing_joint_cost_m = -1}.Check()), CheckError);
   EXPECT_NO_THROW(kPerPart.Check());
   const Reenactment r = Clip();

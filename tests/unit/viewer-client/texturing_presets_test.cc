@@ -30,7 +30,13 @@ TEST(TexturingPresets, EachAddsOneStepAndAllPassCheck) {
   EXPECT_EQ(relit.shape, BodyShape::kProfiled);
   EXPECT_EQ(relit.mode, TexturingMode::kBlendVisible);
   EXPECT_TRUE(relit.relight);
-  for (const TexturingOptions& o : {thesis, per_part, occlusion, blend, shape, profile, relit})
+  EXPECT_EQ(relit.fallback_candidates, 0);
+  const TexturingOptions fallback = TexturingPreset("fallback").value();
+  EXPECT_TRUE(fallback.relight);
+  EXPECT_EQ(fallback.candidates, relit.candidates);
+  EXPECT_EQ(fallback.candidates + fallback.fallback_candidates, kMaxTextureCandidates);
+  for (const TexturingOptions& o :
+       {thesis, per_part, occlusion, blend, shape, profile, relit, fallback})
     EXPECT_NO_THROW(o.Check());
 }
 
@@ -38,8 +44,9 @@ TEST(TexturingPresets, UnknownNameIsAUsageErrorListingTheKnownOnes) {
   const auto r = TexturingPreset("Blend");
   ASSERT_FALSE(r.ok());
   EXPECT_EQ(r.error().code, "usage");
-  EXPECT_NE(r.error().message.find("thesis, per-part, occlusion, blend, shape, profile, relit"),
-            std::string::npos);
+  EXPECT_NE(
+      r.error().message.find("thesis, per-part, occlusion, blend, shape, profile, relit, fallback"),
+      std::string::npos);
 }
 
 }  // namespace
