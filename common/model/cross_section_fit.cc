@@ -167,14 +167,6 @@ std::optional<std::pair<LinePixel, LinePixel>> AxisRun(std::vector<LinePixel>& p
   return best;
 }
 
-// The value at t of a ring array, linear between rings.
-double RingValueAt(const std::array<double, kShapeRings>& rings, double t) {
-  const double x = std::clamp(t, 0.0, 1.0) * (kShapeRings - 1);
-  const int k = std::min(kShapeRings - 2, static_cast<int>(std::floor(x)));
-  const double f = x - k;
-  return (1 - f) * rings[k] + f * rings[k + 1];
-}
-
 // Rings without a value take the value interpolated linearly (in their measured positions)
 // between the nearest rings that have one, or copied beyond the outermost. Precondition: some
 // ring has a value.

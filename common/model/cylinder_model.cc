@@ -1,5 +1,6 @@
 #include "common/model/cylinder_model.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/error/check.h"
@@ -29,6 +30,13 @@ bool PartShape::IsCylinder() const {
 }
 
 bool PartShape::IsCircular() const { return width == depth; }
+
+double RingValueAt(const std::array<double, kShapeRings>& rings, double t) {
+  const double x = std::clamp(t, 0.0, 1.0) * (kShapeRings - 1);
+  const int k = std::min(kShapeRings - 2, static_cast<int>(x));
+  const double f = x - k;
+  return (1 - f) * rings[k] + f * rings[k + 1];
+}
 
 std::optional<Eigen::Vector3d> PartWidthDirection(const Skeleton& skeleton, BodyPart part) {
   Joint left, right;

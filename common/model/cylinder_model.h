@@ -47,6 +47,10 @@ struct PartShape {
   bool IsCircular() const;  // width[k] == depth[k] at every ring (tapered at most)
 };
 
+// The value at axis fraction t (clamped to [0, 1]) of a ring profile (width or depth), linear
+// between the rings at t_k = k / (kShapeRings - 1).
+double RingValueAt(const std::array<double, kShapeRings>& rings, double t);
+
 // Indexed by Index(BodyPart). Fitted by cross_section_fit.h.
 using PartShapes = std::array<PartShape, kBodyPartCount>;
 

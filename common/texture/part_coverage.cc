@@ -12,14 +12,6 @@
 namespace reenact {
 namespace {
 
-// The ring profile value at axis fraction t, linear between the rings.
-double ProfileAt(const std::array<double, kShapeRings>& values, double t) {
-  const double s = std::clamp(t, 0.0, 1.0) * (kShapeRings - 1);
-  const int k = std::min(static_cast<int>(s), kShapeRings - 2);
-  const double f = s - k;
-  return (1 - f) * values[k] + f * values[k + 1];
-}
-
 bool Visible(const Eigen::Vector3d& point, int label, const PinholeCamera& camera,
              const ImageGray8& mask, const ImageLabel8& part_labels, const Image<float>& depth_m,
              double depth_tolerance_m) {
@@ -53,8 +45,8 @@ PartCoverage CoverageOfPart(const Cylinder& c, int label, const PinholeCamera& c
     const Eigen::Vector3d d = std::cos(theta) * *f + std::sin(theta) * side;
     for (int j = 0; j < kCoverageHeights; ++j) {
       const double t = (j + 0.5) / kCoverageHeights;
-      const double across = d.dot(x_hat) / ProfileAt(c.shape.width, t);
-      const double along = d.dot(y_hat) / ProfileAt(c.shape.depth, t);
+      const double across = d.dot(x_hat) / RingValueAt(c.shape.width, t);
+      const double along = d.dot(y_hat) / RingValueAt(c.shape.depth, t);
       const double rho = c.radius / std::sqrt(across * across + along * along);
       const Eigen::Vector3d point = c.a + t * axis + rho * d;
       if (Visible(point, label, camera, mask, part_labels, depth_m, depth_tolerance_m))

@@ -91,11 +91,7 @@ std::optional<ProjectedAxis> ProjectAxis(const Cylinder& c, const PinholeCamera&
 // point that projects there is at lambda = s z0 / ((1 - s) z1 + s z0) of the clipped axis.
 double RingScaleAt(const ProjectedAxis& axis, double s) {
   const double lambda = s * axis.z0 / ((1 - s) * axis.z1 + s * axis.z0);
-  const double t = std::clamp(axis.t0 + lambda * (axis.t1 - axis.t0), 0.0, 1.0);
-  const double x = t * (kShapeRings - 1);
-  const int k = std::min(static_cast<int>(x), kShapeRings - 2);
-  const double f = x - k;
-  return (1 - f) * axis.ring_scale[k] + f * axis.ring_scale[k + 1];
+  return RingValueAt(axis.ring_scale, axis.t0 + lambda * (axis.t1 - axis.t0));
 }
 
 // Pixel box (inclusive) that holds the cylinder's image: the projection of its axis-aligned

@@ -182,14 +182,22 @@ std::pair<PartExtensions, PartShapes> Reenactment::ShapeOf(BodyShape shape) cons
 
 StoredTexture Reenactment::Texture(int n) const { return Texture(n, options_.texturing.shape); }
 
+PinholeCamera Reenactment::CropCamera(int n) const {
+  const proto::ClipFrame& f = frames_.at(n);
+  return manifest_.color_camera.Cropped(f.crop_x, f.crop_y, f.color.width, f.color.height);
+}
+
+VisibilityMaps Reenactment::VisibilityMapsOf(int n, BodyShape shape) const {
+  const proto::ClipFrame& f = frames_.at(n);
+  const auto [extensions, shapes] = ShapeOf(shape);
+  return MakeVisibilityMaps(skeletons_in_sensor_.at(n), manifest_.radius_ratio, CropCamera(n),
+                            f.mask, f.depth, manifest_.depth_scale_m, extensions, shapes);
+}
+
 StoredTexture Reenactment::Texture(int n, BodyShape shape) const {
   const proto::ClipFrame& f = frames_.at(n);
-  const PinholeCamera camera =
-      manifest_.color_camera.Cropped(f.crop_x, f.crop_y, f.color.width, f.color.height);
-  const auto [extensions, shapes] = ShapeOf(shape);
-  VisibilityMaps maps =
-      MakeVisibilityMaps(skeletons_in_sensor_.at(n), manifest_.radius_ratio, camera, f.mask,
-                         f.depth, manifest_.depth_scale_m, extensions, shapes);
+  const PinholeCamera camera = CropCamera(n);
+  VisibilityMaps maps = VisibilityMapsOf(n, shape);
   Image<float> normals;
   if (subject_light_.found && !maps.depth_m.empty())
     normals = DepthNormalMap(maps.depth_m, maps.part_labels, camera);
@@ -204,10 +212,12 @@ const PartTextureIndex& Reenactment::CoverageIndexOf(BodyShape shape) const {
     std::vector<PartCoverages> coverage(frames_.size(), PartCoverages{});
     for (size_t n = 0; n < frames_.size(); ++n) {
       if (!part_allowed_[n]) continue;
-      const StoredTexture t = Texture(static_cast<int>(n), shape);
+      const int frame = static_cast<int>(n);
+      const VisibilityMaps maps = VisibilityMapsOf(frame, shape);
       coverage[n] = CoverageOfFrame(
           PoseCylinders(skeletons_in_sensor_[n], manifest_.radius_ratio, extensions, shapes),
-          t.camera, t.mask, t.part_labels, t.depth_m, kDefaultDepthToleranceM);
+          CropCamera(frame), frames_[n].mask, maps.part_labels, maps.depth_m,
+          kDefaultDepthToleranceM);
     }
     entry.index = PartTextureIndex(skeletons_in_sensor_, part_allowed_, coverage);
   });

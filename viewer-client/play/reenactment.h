@@ -26,6 +26,7 @@
 #include "common/texture/part_selection.h"
 #include "common/texture/subject_light.h"
 #include "common/texture/texture_index.h"
+#include "common/texture/visibility_maps.h"
 #include "proto/clip/frame_codec.h"
 #include "proto/clip/manifest.h"
 #include "viewer-client/render/renderer.h"
@@ -176,6 +177,10 @@ class Reenactment {
   PartExtensions part_extensions_{};
   PartShapes part_shapes_{};
   SubjectLightFit subject_light_{};
+
+  // Frame n's crop camera, and its part-label map (drawn with `shape`) and depth in metres.
+  PinholeCamera CropCamera(int n) const;
+  VisibilityMaps VisibilityMapsOf(int n, BodyShape shape) const;
 
   // The extensions and cross-sections a shape draws with.
   std::pair<PartExtensions, PartShapes> ShapeOf(BodyShape shape) const;
