@@ -34,8 +34,24 @@
 // with seen_label(x, y) the truth's label at the pixel, or the drawn cylinder's part where
 // the truth shows no subject there (an extra pixel: a silhouette error, which the IoU
 // measures). It is 0 for a pixel copy of the right view (up to bilinear sampling across
-// label borders) and counts what the viewer sees as a doubled limb: another part's texture
-// where the body shows this one.
+// label borders) and counts what the viewer sees as another part's texture where the body
+// shows this one.
+//
+// Both rates count a texel a few centimetres across a part border as wrong: a seam that the
+// cylinders' texture mapping places a little off the body's border, or the model's part
+// borders against the skinning's (at an upper / lower torso border on one shirt nobody sees a
+// wrong part). What the thesis's viewers saw was a doubled limb: another part's texture where
+// that part is nowhere near. The doubled-limb rate counts only that:
+//
+//   doubled_limb_rate = sum over textured pixels and contributors j of
+//                       c_j sum_i w_i [label_i is a body part != seen_label(x, y) and the
+//                       truth shows label_i nowhere within r(x, y) of (x, y)] / sum_i w_i,
+//                       divided by the subject pixels
+//
+// with r(x, y) = focal_px border_m / z(x, y) pixels, border_m (default 5 cm) on the shown
+// surface at the render's depth z there, and the distance the Euclidean one in the image to
+// the nearest pixel the truth labels label_i. It is at most the seen-part rate; background
+// texels (a silhouette error) do not count.
 //
 // Subject pixels are all pixels the reference render marks (mask 255); a pixel drawn in a
 // part's flat colour (no stored frame: untextured) took no colour from any source pixel and
@@ -64,13 +80,28 @@ struct PartProvenance {
   double wrong_pixels = 0;  // sum of the textured pixels' wrong shares
   // The same against the part the ground truth shows at the pixel (0 unless measured).
   double wrong_seen_pixels = 0;
+  // The doubled-limb shares (above; 0 unless measured).
+  double doubled_limb_pixels = 0;
   double WrongPartRate() const { return subject_pixels ? wrong_pixels / subject_pixels : 0.0; }
   double WrongSeenPartRate() const {
     return subject_pixels ? wrong_seen_pixels / subject_pixels : 0.0;
   }
+  double DoubledLimbRate() const {
+    return subject_pixels ? doubled_limb_pixels / subject_pixels : 0.0;
+  }
   double UntexturedRate() const {
     return subject_pixels ? 1.0 - static_cast<double>(textured_pixels) / subject_pixels : 0.0;
   }
+};
+
+// Default border of the doubled-limb rate, metres on the shown surface.
+inline constexpr double kDoubledLimbBorderM = 0.05;
+
+// The ground truth as seen from the render's camera, for the seen-part and doubled-limb rates.
+struct SeenParts {
+  const ImageLabel8* labels = nullptr;    // its part labels (PartLabel or 0), the render's size
+  double focal_px = 0;                    // the render camera's focal length, pixels; > 0
+  double border_m = kDoubledLimbBorderM;  // finite, >= 0
 };
 
 // The wrong share of one sample at crop pixel (u, v) for the expected label (see above);
@@ -79,14 +110,14 @@ double WrongShareOfSample(const SourceLabels& source, double u, double v, int ex
 
 // Sums the wrong shares over a reference render. cylinder_parts[i] is the body part of the
 // render's part index i; source(n) gives stored frame n's crop mask and labels (called once
-// per contributor of a textured pixel; it may cache). seen_labels: the ground truth's part
-// labels from the render's camera (same size as the render), for wrong_seen_pixels; null
-// leaves it 0. Preconditions (CHECK): every part index in the render is <
-// cylinder_parts.size(); source(n) returns non-null images for every source frame;
-// seen_labels, when given, has the render's size.
+// per contributor of a textured pixel; it may cache). seen: the ground truth from the render's
+// camera, for wrong_seen_pixels and doubled_limb_pixels; null leaves both 0. Preconditions
+// (CHECK): every part index in the render is < cylinder_parts.size(); source(n) returns
+// non-null images for every source frame; seen, when given, has labels of the render's size,
+// focal_px > 0 and border_m >= 0, both finite.
 PartProvenance MeasurePartProvenance(const ReferenceRender& render,
                                      std::span<const BodyPart> cylinder_parts,
                                      const std::function<SourceLabels(int frame)>& source,
-                                     const ImageLabel8* seen_labels = nullptr);
+                                     const SeenParts* seen = nullptr);
 
 }  // namespace reenact::eval

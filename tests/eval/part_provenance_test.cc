@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <vector>
 
 #include "common/error/check.h"
@@ -99,6 +100,18 @@ struct CapOverALabelBorder {
       }
   }
   SourceLabels source() const { return {&crop.mask, 40, 20, &labels}; }
+  // The truth seen from the render's camera; the cap's face lies at z = 1 m, so border_m
+  // spans 200 border_m pixels there.
+  SeenParts Seen(const ImageLabel8& seen, double border_m = kDoubledLimbBorderM) const {
+    return {.labels = &seen, .focal_px = camera.fx, .border_m = border_m};
+  }
+  // Cap pixels in columns [x0, x1).
+  int CapColumns(int x0, int x1) const {
+    int n = 0;
+    for (int y = 0; y < 120; ++y)
+      for (int x = x0; x < x1; ++x) n += render.part.at(x, y) == 0;
+    return n;
+  }
 };
 
 // The reference renderer's own provenance: exactly the cap pixels right of the label border
@@ -124,6 +137,7 @@ TEST(PartProvenance, MeasuresAReferenceRenderPixelByPixel) {
   EXPECT_NEAR(p.WrongPartRate(), static_cast<double>(s.right_of_border) / (s.cap + s.flat), 1e-5);
   EXPECT_NEAR(p.UntexturedRate(), static_cast<double>(s.flat) / (s.cap + s.flat), 1e-12);
   EXPECT_EQ(p.wrong_seen_pixels, 0.0);  // not measured without seen labels
+  EXPECT_EQ(p.doubled_limb_pixels, 0.0);
 }
 
 // The same render is a pixel copy of the stored view: where the viewer sees the torso (right
@@ -131,37 +145,100 @@ TEST(PartProvenance, MeasuresAReferenceRenderPixelByPixel) {
 // though the drawn part's rate still counts the right side.
 TEST(PartProvenance, APixelCopyOfTheSeenViewShowsNoWrongPart) {
   const CapOverALabelBorder s;
+  const SeenParts seen = s.Seen(s.labels);
   const PartProvenance p = MeasurePartProvenance(
-      s.render, s.cylinder_parts, [&](int) { return s.source(); }, &s.labels);
+      s.render, s.cylinder_parts, [&](int) { return s.source(); }, &seen);
   EXPECT_NEAR(p.wrong_pixels, s.right_of_border, 1e-3 * s.cap);
   EXPECT_NEAR(p.wrong_seen_pixels, 0.0, 1e-3 * s.cap);
   EXPECT_NEAR(p.WrongSeenPartRate(), 0.0, 1e-5);
+  EXPECT_NEAR(p.DoubledLimbRate(), 0.0, 1e-5);
 }
 
 // Seen labels that show the arm everywhere: the torso pixels right of the border are another
 // part than the one seen, as they are for the drawn arm. Where the truth shows no subject the
-// drawn part is expected, so a seen image of background counts as the drawn rate does.
+// drawn part is expected, so a seen image of background counts as the drawn rate does. The
+// truth shows the wrong texels' part nowhere, so every wrong texel is a doubled limb.
 TEST(PartProvenance, SeenLabelsNameThePartExpectedAtEachPixel) {
   const CapOverALabelBorder s;
   for (const int seen_label : {kArm, kBackgroundLabel}) {
-    const ImageLabel8 seen(160, 120, 1, static_cast<uint8_t>(seen_label));
+    const ImageLabel8 labels(160, 120, 1, static_cast<uint8_t>(seen_label));
+    const SeenParts seen = s.Seen(labels);
     const PartProvenance p = MeasurePartProvenance(
         s.render, s.cylinder_parts, [&](int) { return s.source(); }, &seen);
     EXPECT_NEAR(p.wrong_seen_pixels, s.right_of_border, 1e-3 * s.cap) << seen_label;
     EXPECT_NEAR(p.wrong_seen_pixels, p.wrong_pixels, 1e-9) << seen_label;
+    EXPECT_NEAR(p.doubled_limb_pixels, p.wrong_seen_pixels, 1e-9) << seen_label;
   }
   const ImageLabel8 torso(160, 120, 1, static_cast<uint8_t>(kTorso));  // the left side wrong
+  const SeenParts seen = s.Seen(torso);
   const PartProvenance p = MeasurePartProvenance(
-      s.render, s.cylinder_parts, [&](int) { return s.source(); }, &torso);
+      s.render, s.cylinder_parts, [&](int) { return s.source(); }, &seen);
   EXPECT_NEAR(p.wrong_seen_pixels, s.cap - s.right_of_border, 1e-3 * s.cap);
+  EXPECT_NEAR(p.doubled_limb_pixels, p.wrong_seen_pixels, 1e-9);
+}
+
+// The truth's border lies 30 px right of the source's (x = 114 against 84): the cap's columns
+// 84..113 show torso texels where the arm is seen, all wrong against the part seen. A doubled
+// limb only where the torso is seen nowhere within the border: 10.5 px at the cap's depth of
+// 1 m (200 px focal length, 5.25 cm), i.e. the columns more than 10.5 px left of 114, 84..103.
+TEST(PartProvenance, ASeamNearThePartsBorderIsNotADoubledLimb) {
+  const CapOverALabelBorder s;
+  ImageLabel8 labels(160, 120, 1, kArm);
+  for (int y = 0; y < 120; ++y)
+    for (int x = 114; x < 160; ++x) labels.at(x, y) = kTorso;
+  const SeenParts seen = s.Seen(labels, 0.0525);
+  const PartProvenance p = MeasurePartProvenance(
+      s.render, s.cylinder_parts, [&](int) { return s.source(); }, &seen);
+  ASSERT_GT(s.CapColumns(104, 114), 100);  // the cap reaches past the seen border's band
+  EXPECT_NEAR(p.wrong_seen_pixels, s.CapColumns(84, 114), 1e-3 * s.cap);
+  EXPECT_NEAR(p.doubled_limb_pixels, s.CapColumns(84, 104), 1e-3 * s.cap);
+  // A border of 0 counts every wrong texel whose part is not under the pixel itself.
+  const SeenParts exact = s.Seen(labels, 0);
+  EXPECT_NEAR(MeasurePartProvenance(
+                  s.render, s.cylinder_parts, [&](int) { return s.source(); }, &exact)
+                  .doubled_limb_pixels,
+              p.wrong_seen_pixels, 1e-3 * s.cap);
+}
+
+// Source texels labelled background (the stored frame's mask wider than its body) are wrong
+// against any part seen, but a silhouette error, not another part's texture.
+TEST(PartProvenance, BackgroundTexelsAreNotADoubledLimb) {
+  CapOverALabelBorder s;
+  for (int y = 0; y < 120; ++y)
+    for (int x = 84; x < 160; ++x) s.labels.at(x, y) = kBackgroundLabel;
+  const ImageLabel8 arm(160, 120, 1, kArm);
+  const SeenParts seen = s.Seen(arm);
+  const PartProvenance p = MeasurePartProvenance(
+      s.render, s.cylinder_parts, [&](int) { return s.source(); }, &seen);
+  EXPECT_NEAR(p.wrong_seen_pixels, s.right_of_border, 1e-3 * s.cap);
+  EXPECT_EQ(p.doubled_limb_pixels, 0.0);
 }
 
 TEST(PartProvenance, SeenLabelsOfAnotherSizeAreABug) {
   const CapOverALabelBorder s;
   const ImageLabel8 small(80, 60, 1, 0);
+  const SeenParts seen = s.Seen(small);
   EXPECT_THROW(MeasurePartProvenance(
-                   s.render, s.cylinder_parts, [&](int) { return s.source(); }, &small),
+                   s.render, s.cylinder_parts, [&](int) { return s.source(); }, &seen),
                CheckError);
+}
+
+TEST(PartProvenance, ADoubledLimbBorderNeedsAFocalLengthAndABorder) {
+  const CapOverALabelBorder s;
+  const auto measure = [&](const SeenParts& seen) {
+    return MeasurePartProvenance(
+        s.render, s.cylinder_parts, [&](int) { return s.source(); }, &seen);
+  };
+  SeenParts seen = s.Seen(s.labels);
+  seen.focal_px = 0;
+  EXPECT_THROW(measure(seen), CheckError);
+  seen = s.Seen(s.labels, -0.01);
+  EXPECT_THROW(measure(seen), CheckError);
+  seen = s.Seen(s.labels, std::numeric_limits<double>::quiet_NaN());
+  EXPECT_THROW(measure(seen), CheckError);
+  seen.labels = nullptr;
+  seen.border_m = 0.05;
+  EXPECT_THROW(measure(seen), CheckError);
 }
 
 // A blended pixel: contributors with shares 1/4 (a texel wholly of another part) and 3/4

@@ -226,9 +226,9 @@ Expected<FrameEvaluation> QualityHarness::Evaluate(const QualityMethod& method, 
       });
   e.reference = RenderReference(s.camera, parts, viewer::ReferenceOptionsOf(e.frame.draw));
   e.truth = s.scene.Render(k, s.camera, viewer_from_world->inverse(), {.draw_room = false});
+  const SeenParts seen{.labels = &e.truth.part_labels, .focal_px = s.camera.fx};
   e.provenance = MeasurePartProvenance(
-      e.reference, e.frame.cylinder_parts, [&s](int n) { return s.LabelsFor(n); },
-      &e.truth.part_labels);
+      e.reference, e.frame.cylinder_parts, [&s](int n) { return s.LabelsFor(n); }, &seen);
   e.reference_iou = SilhouetteIou(e.rendered.subject_mask, e.reference.mask);
   e.comparison =
       CompareSubject(e.rendered.color, e.rendered.subject_mask, e.truth.color, e.truth.mask);
@@ -303,6 +303,7 @@ Expected<QualityRun> RunQuality(const QualityOptions& options) {
         row.colour_mae += e->comparison.colour_mae;
         row.wrong_part_rate += e->provenance.WrongPartRate();
         row.wrong_seen_part_rate += e->provenance.WrongSeenPartRate();
+        row.doubled_limb_rate += e->provenance.DoubledLimbRate();
         row.untextured_rate += e->provenance.UntexturedRate();
         row.reference_iou += e->reference_iou;
         ++row.n;
@@ -315,8 +316,9 @@ Expected<QualityRun> RunQuality(const QualityOptions& options) {
       }
       row.flicker = row.reenacted_change - row.truth_change;
       if (psnr_frames) row.psnr_db /= psnr_frames;
-      for (double* mean : {&row.ssim, &row.iou, &row.colour_mae, &row.wrong_part_rate,
-                           &row.wrong_seen_part_rate, &row.untextured_rate, &row.reference_iou})
+      for (double* mean :
+           {&row.ssim, &row.iou, &row.colour_mae, &row.wrong_part_rate, &row.wrong_seen_part_rate,
+            &row.doubled_limb_rate, &row.untextured_rate, &row.reference_iou})
         *mean /= row.n;
       row.ms_per_frame = ms.empty() ? 0 : UpperMedian(ms);
       run.rows.push_back(row);
@@ -332,7 +334,7 @@ Expected<QualityRun> RunQuality(const QualityOptions& options) {
           SideBySide(e->truth.color, e->truth.mask, e->rendered.color, e->rendered.subject_mask));
       if (!written.ok()) return written.error();
       run.images.push_back({method->name, pair, path, e->comparison, e->provenance.WrongPartRate(),
-                            e->provenance.WrongSeenPartRate()});
+                            e->provenance.WrongSeenPartRate(), e->provenance.DoubledLimbRate()});
     }
   }
   return run;
