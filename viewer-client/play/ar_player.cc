@@ -16,6 +16,7 @@
 #include "viewer-client/output/mp4_writer.h"
 #include "viewer-client/output/png_writer.h"
 #include "viewer-client/output/render_json.h"
+#include "viewer-client/play/ar_pipeline.h"
 
 namespace reenact::viewer {
 namespace {
@@ -24,6 +25,12 @@ std::string SizeText(int w, int h) { return std::to_string(w) + "x" + std::to_st
 
 cv::Mat Wrap(ImageRgb8& image) {
   return cv::Mat(image.height, image.width, CV_8UC3, image.data.data());
+}
+
+using Clock = std::chrono::steady_clock;
+
+double MsSince(Clock::time_point t) {
+  return 1e3 * std::chrono::duration<double>(Clock::now() - t).count();
 }
 
 // The camera image as an ideal pinhole (same K) image.
@@ -102,6 +109,12 @@ void ArCompositor::SetPresentation(bool textured, bool draw_skeleton) {
 }
 
 Expected<ArFrame> ArCompositor::Process(const CameraFrame& frame, std::optional<int> clip_frame) {
+  auto located = Locate(frame);
+  if (!located.ok()) return located.error();
+  return Compose(std::move(located).value(), clip_frame);
+}
+
+Expected<ArLocatedFrame> ArCompositor::Locate(const CameraFrame& frame) {
   const ImageRgb8& image = frame.color;
   if (image.data.empty() || image.width <= 0 || image.height <= 0)
     return MakeError("invalid_argument", "camera frame " + std::to_string(frames_) + " is empty");
@@ -119,20 +132,14 @@ Expected<ArFrame> ArCompositor::Process(const CameraFrame& frame, std::optional<
     return MakeError("invalid_argument",
                      "camera frame " + std::to_string(frames_) + " has no finite timestamp");
 
-  using Clock = std::chrono::steady_clock;
-  const auto ms_since = [](Clock::time_point t) {
-    return 1e3 * std::chrono::duration<double>(Clock::now() - t).count();
-  };
   const auto start = Clock::now();
-  ArFrame out;
+  ArLocatedFrame located;
+  ArFrame& out = located.frame;
   out.camera_frame = frames_++;
   out.timestamp_s = frame.timestamp_s;
   if (!first_timestamp_s_) first_timestamp_s_ = frame.timestamp_s;
   const int count = reenactment_.frame_count();
-  if (clip_frame) {
-    REENACT_CHECK(*clip_frame >= 0 && *clip_frame < count, "clip_frame out of range");
-    out.clip_frame = *clip_frame;
-  } else if (options_.clock == ClipClock::kFrameIndex) {
+  if (options_.clock == ClipClock::kFrameIndex) {
     out.clip_frame = out.camera_frame % count;
   } else {
     const double elapsed = std::max(0.0, frame.timestamp_s - *first_timestamp_s_);
@@ -152,10 +159,25 @@ Expected<ArFrame> ArCompositor::Process(const CameraFrame& frame, std::optional<
     out.err_deg = Eigen::AngleAxisd(truth.linear().transpose() * estimate.linear()).angle() * 180 /
                   std::numbers::pi;
   }
+  located.image = image;
+  out.total_ms = MsSince(start);
+  return located;
+}
 
+ArFrame ArCompositor::Compose(ArLocatedFrame located, std::optional<int> clip_frame) {
+  const auto start = Clock::now();
+  ArFrame out = std::move(located.frame);
+  REENACT_CHECK(located.image.width == camera_.width && located.image.height == camera_.height &&
+                    located.image.channels == 3,
+                "Compose takes a frame Locate returned");
+  if (clip_frame) {
+    REENACT_CHECK(*clip_frame >= 0 && *clip_frame < reenactment_.frame_count(),
+                  "clip_frame out of range");
+    out.clip_frame = *clip_frame;
+  }
   auto t = Clock::now();
-  ImageRgb8 background = Undistorted(image, camera_);
-  out.composite_ms = ms_since(t);
+  ImageRgb8 background = Undistorted(located.image, camera_);
+  out.composite_ms = MsSince(t);
   if (out.reloc.viewer_from_world) {
     t = Clock::now();
     ReenactedFrame rf = reenactment_.Build(out.clip_frame, render_camera_,
@@ -165,18 +187,18 @@ Expected<ArFrame> ArCompositor::Process(const CameraFrame& frame, std::optional<
     rf.draw.textured = options_.textured;
     if (!options_.draw_skeleton) rf.draw.bones.clear();
     out.texture_frame = rf.texture_frame;
-    out.select_ms = ms_since(t);
+    out.select_ms = MsSince(t);
     t = Clock::now();
     out.out = renderer_.Render(rf.draw);
-    out.render_ms = ms_since(t);
+    out.render_ms = MsSince(t);
   } else {
     out.out.color = std::move(background);
     out.out.subject_mask = ImageGray8(camera_.width, camera_.height, 1, 0);
   }
   t = Clock::now();
   if (options_.draw_status) DrawArStatus(out.reloc, out.out.color);
-  out.composite_ms += ms_since(t);
-  out.total_ms = ms_since(start);
+  out.composite_ms += MsSince(t);
+  out.total_ms += MsSince(start);
   return out;
 }
 
@@ -229,7 +251,7 @@ Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::Cl
                                        CameraSource& camera, const std::string& clip_id,
                                        const ArPlayOptions& options) {
   options.Check();
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   const PinholeCamera& intrinsics = camera.camera();
   auto renderer = Renderer::CreateHeadless(intrinsics.width, intrinsics.height);
   if (!renderer.ok()) return renderer.error();
@@ -245,12 +267,12 @@ Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::Cl
   ArSummaryBuilder builder;
   std::vector<ImageRgb8> written;
   nlohmann::json frames_json = nlohmann::json::array();
-  while (options.max_frames < 0 || builder.frames() < options.max_frames) {
-    auto next = camera.Next();
+  ArPipeline pipeline(*compositor, CameraFrames(camera, options.max_frames));
+  while (true) {
+    auto next = pipeline.Next();
     if (!next.ok()) return next.error();
     if (!next->has_value()) break;
-    auto frame = compositor->Process(**next);
-    if (!frame.ok()) return frame.error();
+    const std::optional<ArFrame>& frame = *next;
     const int i = frame->camera_frame;
     char name[32];
     std::snprintf(name, sizeof name, "frame_%04d.png", i);
@@ -332,7 +354,7 @@ Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::Cl
   std::ofstream json(options.out_dir / "render.json");
   json << render.dump(2) << "\n";
   if (!json) return MakeError("io", "cannot write " + (options.out_dir / "render.json").string());
-  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return summary;
 }
 

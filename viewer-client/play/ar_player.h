@@ -72,6 +72,14 @@ struct ArFrame {
   std::optional<double> err_cm, err_deg;
 };
 
+// A camera frame located (ArCompositor::Locate): everything of its ArFrame up to the
+// relocaliser's result (camera_frame, timestamp_s, clip_frame, reloc, the truth and its
+// errors; total_ms so far) and the camera image to draw over.
+struct ArLocatedFrame {
+  ArFrame frame;
+  ImageRgb8 image;
+};
+
 // Turns camera frames into AR frames. Holds the relocaliser's track and the renderer's
 // texture cache, so frames must come in camera order.
 class ArCompositor {
@@ -91,6 +99,16 @@ class ArCompositor {
   // the camera's size (the message gives both sizes: the calibration does not fit the
   // camera), or its timestamp is not finite.
   Expected<ArFrame> Process(const CameraFrame& frame, std::optional<int> clip_frame = {});
+
+  // Process in two steps: Locate (steps 1-2: the checks, the clip clock and the relocaliser;
+  // Process's errors) and Compose (steps 3-4: drawing on the renderer; clip_frame as in
+  // Process, replacing the clip clock's k). Locate touches only the relocaliser's track and
+  // the clock, Compose only the renderer, the texture cache and the selection history, so
+  // Locate of camera frame i + 1 may run on another thread while Compose of frame i runs on
+  // the renderer's (ar_pipeline.h); each must see its frames in camera order. Compose's
+  // CheckError: a located image of another size than the camera's, clip_frame out of range.
+  Expected<ArLocatedFrame> Locate(const CameraFrame& frame);
+  ArFrame Compose(ArLocatedFrame located, std::optional<int> clip_frame = {});
 
   // The presentation toggles of the frames to come (ArFrameOptions' textured, draw_skeleton).
   void SetPresentation(bool textured, bool draw_skeleton);

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "common/error/check.h"
+#include "viewer-client/play/ar_pipeline.h"
 #include "viewer-client/play/playback_state.h"
 #include "viewer-client/render/window.h"
 
@@ -43,28 +44,27 @@ Expected<ArPlaySummary> PlayArInWindow(const Reenactment& reenactment, proto::Cl
   std::optional<double> first_timestamp_s;
   Clock::time_point first_shown;
   auto last = Clock::now();
-  while (!window->ShouldClose() && !state.quit() &&
-         (options.max_frames < 0 || builder.frames() < options.max_frames)) {
-    auto next = camera.Next();
-    if (!next.ok()) return next.error();
-    if (!next->has_value()) break;
-    const CameraFrame& frame = **next;
-    if (!first_timestamp_s) {
-      first_timestamp_s = frame.timestamp_s;
-      first_shown = Clock::now();
-    } else if (std::isfinite(frame.timestamp_s)) {
-      std::this_thread::sleep_until(
-          first_shown + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
-                            std::max(0.0, frame.timestamp_s - *first_timestamp_s))));
-    }
+  ArPipeline pipeline(*compositor, CameraFrames(camera, options.max_frames));
+  while (!window->ShouldClose() && !state.quit()) {
     window->PollEvents(state);
     const auto now = Clock::now();
     state.Advance(std::chrono::duration<double>(now - last).count(),
                   reenactment.manifest().frame_rate_hz);
     last = now;
     compositor->SetPresentation(state.textured(), state.skeleton());
-    auto out = compositor->Process(frame, state.frame());
-    if (!out.ok()) return out.error();
+    auto next = pipeline.Next(state.frame());
+    if (!next.ok()) return next.error();
+    if (!next->has_value()) break;
+    const std::optional<ArFrame>& out = *next;
+    // Shown no earlier than its timestamp says, counted from the first frame's showing.
+    if (!first_timestamp_s) {
+      first_timestamp_s = out->timestamp_s;
+      first_shown = Clock::now();
+    } else {
+      std::this_thread::sleep_until(
+          first_shown + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                            std::max(0.0, out->timestamp_s - *first_timestamp_s))));
+    }
 
     // The composite (camera image, reenactment, banner) as the window's picture.
     FrameDraw show;

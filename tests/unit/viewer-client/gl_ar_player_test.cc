@@ -1,7 +1,8 @@
 // The AR presentation (viewer-client/play/ar_player.h) on a recorded synthetic clip: the
 // viewer's camera frames are the synthetic scene rendered from known viewpoints (as
 // reenact-eval reloc makes them), so the true pose and the true subject mask of every camera
-// frame are known by construction. Needs OpenGL (EGL surfaceless); suites start with "Gl".
+// frame are known by construction. The pipelined loop (ar_pipeline.h) is tested here too,
+// against Process on the same frames. Needs OpenGL (EGL surfaceless); suites start with "Gl".
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -17,6 +18,7 @@
 #include "capture-client/synthetic/synthetic_scene.h"
 #include "common/error/check.h"
 #include "proto/clip/clip_directory.h"
+#include "viewer-client/play/ar_pipeline.h"
 #include "viewer-client/play/ar_player.h"
 #include "viewer-client/play/orbit_camera.h"
 
@@ -119,14 +121,17 @@ class ListSource : public CameraSource {
   std::string description() const override { return "test:list"; }
   const PinholeCamera& camera() const override { return camera_; }
   Expected<std::optional<CameraFrame>> Next() override {
+    ++reads_;
     if (next_ >= frames_.size()) return std::optional<CameraFrame>();
     return std::optional<CameraFrame>(frames_[next_++]);
   }
+  int reads() const { return reads_; }
 
  private:
   PinholeCamera camera_;
   std::vector<CameraFrame> frames_;
   size_t next_ = 0;
+  int reads_ = 0;
 };
 
 CameraFrame Grey(const PinholeCamera& camera, double t) {
@@ -294,6 +299,140 @@ TEST(GlArCompositor, RefusesAFrameOfAnotherSizeThanTheCalibration) {
   EXPECT_EQ(mismatched.error().code, "invalid_argument");
 }
 
+// Camera frames over a list, counting the reads; a frame index in `fail_at` reads as a camera
+// error instead.
+struct CountingFrames {
+  std::vector<CameraFrame> frames;
+  int fail_at = -1;
+  int reads = 0;
+  ArPipeline::FrameSource Source() {
+    return [this]() -> Expected<std::optional<CameraFrame>> {
+      const int i = reads++;
+      if (i == fail_at) return MakeError("io", "camera unplugged");
+      if (i >= static_cast<int>(frames.size())) return std::optional<CameraFrame>{};
+      return std::optional<CameraFrame>(frames[i]);
+    };
+  }
+};
+
+// A lost frame, then the subject from 5 degrees: relocalised, then tracked.
+std::vector<CameraFrame> LostThenSeen(const PinholeCamera& camera) {
+  const Clip& clip = RecordedClip();
+  std::vector<CameraFrame> frames{Grey(camera, 0)};
+  for (int i = 1; i < 5; ++i)
+    frames.push_back(CameraFrame{i / 30.0, clip.scene.Render(i, camera, ViewerPose(5)).color, {}});
+  return frames;
+}
+
+// Locating frame i + 1 on the worker while frame i is drawn changes nothing in any frame:
+// each is what Process makes of it, pixel for pixel (the relocaliser and the drawing are
+// deterministic, and each step sees its frames in order).
+TEST(GlArPipeline, GivesWhatProcessGivesFrameByFrame) {
+  const Clip& clip = RecordedClip();
+  const PinholeCamera camera = clip.scene.sensor_camera();
+  Renderer renderer = MakeRenderer(camera);
+  CountingFrames source{LostThenSeen(camera)};
+  auto one_by_one = ArCompositor::Create(clip.reenactment, clip.map, camera, renderer);
+  ASSERT_TRUE(one_by_one.ok());
+  std::vector<ArFrame> expected;
+  for (const CameraFrame& f : source.frames) {
+    auto out = one_by_one->Process(f);
+    ASSERT_TRUE(out.ok()) << out.error().message;
+    expected.push_back(std::move(out).value());
+  }
+  ASSERT_EQ(expected[0].reloc.status, RelocStatus::kLost);
+  ASSERT_EQ(expected[4].reloc.status, RelocStatus::kTracked);
+
+  auto piped = ArCompositor::Create(clip.reenactment, clip.map, camera, renderer);
+  ASSERT_TRUE(piped.ok());
+  ArPipeline pipeline(*piped, source.Source());
+  for (const ArFrame& want : expected) {
+    auto got = pipeline.Next();
+    ASSERT_TRUE(got.ok()) << got.error().message;
+    ASSERT_TRUE(got->has_value());
+    const ArFrame& out = **got;
+    EXPECT_EQ(out.camera_frame, want.camera_frame);
+    EXPECT_EQ(out.clip_frame, want.clip_frame);
+    EXPECT_EQ(out.texture_frame, want.texture_frame);
+    EXPECT_EQ(out.reloc.status, want.reloc.status);
+    EXPECT_EQ(out.reloc.inliers, want.reloc.inliers);
+    ASSERT_EQ(out.reloc.viewer_from_world.has_value(), want.reloc.viewer_from_world.has_value());
+    if (want.reloc.viewer_from_world) {
+      EXPECT_TRUE(out.reloc.viewer_from_world->isApprox(*want.reloc.viewer_from_world, 1e-12));
+    }
+    EXPECT_EQ(out.out.color.data, want.out.color.data) << "camera frame " << want.camera_frame;
+    EXPECT_EQ(out.out.subject_mask.data, want.out.subject_mask.data);
+  }
+  auto end = pipeline.Next();
+  ASSERT_TRUE(end.ok());
+  EXPECT_FALSE(end->has_value());
+  // The end is read once (the 6th read) and then kept.
+  EXPECT_FALSE(pipeline.Next()->has_value());
+  EXPECT_EQ(source.reads, 6);
+}
+
+// The clip frame the caller names (an interactive player's clock) replaces the clip clock's,
+// as in Process; one out of range is a bug.
+TEST(GlArPipeline, TheCallersClipFrameReplacesTheClock) {
+  const Clip& clip = RecordedClip();
+  const PinholeCamera camera = clip.scene.sensor_camera();
+  Renderer renderer = MakeRenderer(camera);
+  CountingFrames source{{Grey(camera, 0), Grey(camera, 1), Grey(camera, 2)}};
+  auto ar = ArCompositor::Create(clip.reenactment, clip.map, camera, renderer, NoBanner());
+  ASSERT_TRUE(ar.ok());
+  ArPipeline pipeline(*ar, source.Source());
+  EXPECT_EQ(pipeline.Next(17).value()->clip_frame, 17);
+  EXPECT_EQ(pipeline.Next().value()->clip_frame, 1);  // frame index clock
+  EXPECT_THROW(pipeline.Next(kClipFrames), CheckError);
+}
+
+// A camera error or a frame Locate refuses ends the loop with that error, in camera order:
+// the frames before it come out first, and the camera is not read again.
+TEST(GlArPipeline, AnErrorComesAfterTheFramesBeforeItAndStays) {
+  const Clip& clip = RecordedClip();
+  const PinholeCamera camera = clip.scene.sensor_camera();
+  Renderer renderer = MakeRenderer(camera);
+  {
+    CountingFrames source{{Grey(camera, 0), Grey(camera, 1), Grey(camera, 2)}, 1};
+    auto ar = ArCompositor::Create(clip.reenactment, clip.map, camera, renderer);
+    ASSERT_TRUE(ar.ok());
+    ArPipeline pipeline(*ar, source.Source());
+    ASSERT_TRUE(pipeline.Next().ok());
+    for (int call = 0; call < 2; ++call) {
+      auto failed = pipeline.Next();
+      ASSERT_FALSE(failed.ok());
+      EXPECT_EQ(failed.error().code, "io");
+      EXPECT_EQ(failed.error().message, "camera unplugged");
+    }
+    EXPECT_EQ(source.reads, 2);
+  }
+  CountingFrames source{{Grey(camera, 0), CameraFrame{0.1, ImageRgb8(320, 240, 3, 128), {}}}};
+  auto ar = ArCompositor::Create(clip.reenactment, clip.map, camera, renderer);
+  ASSERT_TRUE(ar.ok());
+  ArPipeline pipeline(*ar, source.Source());
+  ASSERT_TRUE(pipeline.Next().ok());
+  auto refused = pipeline.Next();
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().code, "invalid_argument");
+  EXPECT_NE(refused.error().message.find("320x240"), std::string::npos);
+  EXPECT_EQ(source.reads, 2);
+}
+
+// A camera without frames: the first call says the end, and nothing is composed.
+TEST(GlArPipeline, ACameraWithoutFramesEndsAtOnce) {
+  const Clip& clip = RecordedClip();
+  const PinholeCamera camera = clip.scene.sensor_camera();
+  Renderer renderer = MakeRenderer(camera);
+  CountingFrames source;
+  auto ar = ArCompositor::Create(clip.reenactment, clip.map, camera, renderer);
+  ASSERT_TRUE(ar.ok());
+  ArPipeline pipeline(*ar, source.Source());
+  auto end = pipeline.Next();
+  ASSERT_TRUE(end.ok());
+  EXPECT_FALSE(end->has_value());
+  EXPECT_EQ(source.reads, 1);
+}
+
 TEST(GlArPlayHeadless, CameraWithoutFramesIsAnError) {
   const Clip& clip = RecordedClip();
   ListSource none(clip.scene.sensor_camera(), {});
@@ -304,6 +443,23 @@ TEST(GlArPlayHeadless, CameraWithoutFramesIsAnError) {
   ASSERT_FALSE(played.ok());
   EXPECT_EQ(played.error().code, "empty");
   EXPECT_NE(played.error().message.find("test:list"), std::string::npos);
+  fs::remove_all(options.out_dir);
+}
+
+// The play locates the next camera frame while drawing one, but never reads past max_frames.
+TEST(GlArPlayHeadless, ReadsNoCameraFrameBeyondMaxFrames) {
+  const Clip& clip = RecordedClip();
+  const PinholeCamera camera = clip.scene.sensor_camera();
+  ListSource source(camera, LostThenSeen(camera));
+  ArPlayOptions options;
+  options.out_dir = fs::temp_directory_path() / ("reenact-gl-ar-max-" + std::to_string(::getpid()));
+  options.write_mp4 = false;
+  options.max_frames = 3;
+  auto played = PlayArHeadless(clip.reenactment, clip.map, source, "clip", options);
+  ASSERT_TRUE(played.ok()) << played.error().message;
+  EXPECT_EQ(played->frames, 3);
+  EXPECT_EQ(source.reads(), 3);
+  EXPECT_FALSE(fs::exists(options.out_dir / "frames/frame_0003.png"));
   fs::remove_all(options.out_dir);
 }
 
