@@ -162,6 +162,9 @@ Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFr
     if (n >= 0 && n < manifest_.frame_count) flagged[n] = true;
   steady_in_world_ = SteadySkeletonTrack(
       in_world, times, std::span<const bool>(flagged.get(), frames_.size()), options_.steady);
+
+  // The clip's own texturing's coverage now, so that the first frame drawn does not wait for it.
+  if (options_.texturing.fallback_candidates > 0) CoverageIndexOf(options_.texturing.shape);
 }
 
 Eigen::Vector3d Reenactment::SubjectCentre() const {
