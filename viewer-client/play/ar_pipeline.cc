@@ -16,7 +16,7 @@ std::future<ArPipeline::Located> ArPipeline::ReadAndLocate() {
     auto frame = next_();
     if (!frame.ok()) return frame.error();
     if (!frame->has_value()) return std::optional<ArLocatedFrame>{};
-    auto located = compositor_.Locate(**frame);
+    auto located = compositor_.Locate(std::move(**frame));
     if (!located.ok()) return located.error();
     return std::optional<ArLocatedFrame>(std::move(located).value());
   });

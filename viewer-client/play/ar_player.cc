@@ -114,7 +114,7 @@ Expected<ArFrame> ArCompositor::Process(const CameraFrame& frame, std::optional<
   return Compose(std::move(located).value(), clip_frame);
 }
 
-Expected<ArLocatedFrame> ArCompositor::Locate(const CameraFrame& frame) {
+Expected<ArLocatedFrame> ArCompositor::Locate(CameraFrame frame) {
   const ImageRgb8& image = frame.color;
   if (image.data.empty() || image.width <= 0 || image.height <= 0)
     return MakeError("invalid_argument", "camera frame " + std::to_string(frames_) + " is empty");
@@ -159,7 +159,7 @@ Expected<ArLocatedFrame> ArCompositor::Locate(const CameraFrame& frame) {
     out.err_deg = Eigen::AngleAxisd(truth.linear().transpose() * estimate.linear()).angle() * 180 /
                   std::numbers::pi;
   }
-  located.image = image;
+  located.image = std::move(frame.color);
   out.total_ms = MsSince(start);
   return located;
 }

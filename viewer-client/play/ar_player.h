@@ -105,9 +105,10 @@ class ArCompositor {
   // Process, replacing the clip clock's k). Locate touches only the relocaliser's track and
   // the clock, Compose only the renderer, the texture cache and the selection history, so
   // Locate of camera frame i + 1 may run on another thread while Compose of frame i runs on
-  // the renderer's (ar_pipeline.h); each must see its frames in camera order. Compose's
+  // the renderer's (ar_pipeline.h); each must see its frames in camera order. Locate keeps
+  // the frame's image for Compose (moved, not copied, when given an rvalue). Compose's
   // CheckError: a located image of another size than the camera's, clip_frame out of range.
-  Expected<ArLocatedFrame> Locate(const CameraFrame& frame);
+  Expected<ArLocatedFrame> Locate(CameraFrame frame);
   ArFrame Compose(ArLocatedFrame located, std::optional<int> clip_frame = {});
 
   // The presentation toggles of the frames to come (ArFrameOptions' textured, draw_skeleton).
