@@ -26,7 +26,22 @@ struct SkinnedBody::Data {
   std::array<int, kJointCount> joint_node{};  // -1: torso derived as mean(neck, waist)
   std::array<Vector3d, kJointCount> joint_offset{};
   int spine_pivot = -1;  // derived torso: the node below the waist on the path to the neck
-  std::vector<BodyPart> joint_part, vertex_part, triangle_part;
+  std::vector<BodyPart> joint_part, vertex_part;
+  // The torso split (header: body-part labels): bind-space (scene frame) spine joints, the
+  // waist and the waist -> neck line, and the torso joint's fraction along it.
+  std::vector<bool> joint_on_spine;
+  Vector3d split_waist = Vector3d::Zero(), split_spine = Vector3d::UnitZ();
+  double split_torso_t = 0.5;
+  std::vector<Vector3d> bind_vertices;  // scene frame
+
+  // The part of a surface point whose dominant skin joint is `joint` at bind position p.
+  BodyPart PartAt(int joint, const Vector3d& p) const {
+    if (!joint_on_spine[joint]) return joint_part[joint];
+    const double t = (p - split_waist).dot(split_spine) / split_spine.squaredNorm();
+    return t > split_torso_t ? BodyPart::kUpperTorso : BodyPart::kLowerTorso;
+  }
+  // The part of the point of triangle `triangle` at bind position p (header: body-part labels).
+  BodyPart PartOfSurfacePoint(int triangle, const Vector3d& p) const;
 };
 
 namespace {
@@ -129,6 +144,42 @@ Error Unsupported(const GltfSkinModel& m, const std::string& what) {
 }
 
 }  // namespace
+
+BodyPart SkinnedBody::Data::PartOfSurfacePoint(int triangle, const Vector3d& p) const {
+  const Eigen::Vector3i& tri = model.triangles[triangle];
+  const Vector3d& a = bind_vertices[tri[0]];
+  const Vector3d e1 = bind_vertices[tri[1]] - a, e2 = bind_vertices[tri[2]] - a, q = p - a;
+  const double g00 = e1.squaredNorm(), g01 = e1.dot(e2), g11 = e2.squaredNorm();
+  const double det = g00 * g11 - g01 * g01;
+  std::array<double, 3> l{1, 0, 0};  // a degenerate triangle: its first vertex's weights
+  if (std::isfinite(det) && det > 1e-12 * g00 * g11) {
+    l[1] = std::max(0.0, (g11 * e1.dot(q) - g01 * e2.dot(q)) / det);
+    l[2] = std::max(0.0, (g00 * e2.dot(q) - g01 * e1.dot(q)) / det);
+    l[0] = std::max(0.0, 1 - l[1] - l[2]);
+    const double sum = l[0] + l[1] + l[2];
+    for (double& v : l) v /= sum;
+  }
+  std::array<std::pair<int, double>, 12> weights{};
+  int count = 0;
+  Vector3d bind = Vector3d::Zero();
+  for (int i = 0; i < 3; ++i) {
+    const SkinVertex& v = model.vertices[tri[i]];
+    bind += l[i] * bind_vertices[tri[i]];
+    for (int k = 0; k < 4; ++k) {
+      if (v.weights[k] <= 0) continue;
+      int e = 0;
+      while (e < count && weights[e].first != v.joints[k]) ++e;
+      if (e == count) weights[count++] = {v.joints[k], 0.0};
+      weights[e].second += l[i] * v.weights[k];
+    }
+  }
+  std::pair<int, double> best{-1, -1};
+  for (int e = 0; e < count; ++e)
+    if (weights[e].second > best.second ||
+        (weights[e].second == best.second && weights[e].first < best.first))
+      best = weights[e];
+  return best.first >= 0 ? PartAt(best.first, bind) : vertex_part[tri[0]];
+}
 
 void SkinnedBodyOptions::Check() const {
   REENACT_CHECK(std::isfinite(height_m) && height_m >= 0 && height_m < 10,
@@ -306,21 +357,17 @@ Expected<SkinnedBody> SkinnedBody::Create(GltfSkinModel model, const SkinnedBody
     return n == node(Joint::kWaist) || (IsDescendant(model, n, node(Joint::kWaist)) &&
                                         IsDescendant(model, node(Joint::kNeck), n));
   };
+  for (int j = 0; j < joint_count; ++j) d.joint_on_spine.push_back(on_spine(model.joint_nodes[j]));
+  d.split_waist = waist;
+  d.split_spine = spine;
+  d.split_torso_t = torso_t;
+  d.bind_vertices = bind_vertices;
   std::vector<int> dominant(model.vertices.size());
   for (size_t i = 0; i < model.vertices.size(); ++i) {
     int k;
     model.vertices[i].weights.maxCoeff(&k);
     dominant[i] = model.vertices[i].joints[k];
-    BodyPart part = d.joint_part[dominant[i]];
-    if (on_spine(model.joint_nodes[dominant[i]])) {
-      const double t = (bind_vertices[i] - waist).dot(spine) / spine.squaredNorm();
-      part = t > torso_t ? BodyPart::kUpperTorso : BodyPart::kLowerTorso;
-    }
-    d.vertex_part.push_back(part);
-  }
-  for (const Eigen::Vector3i& t : model.triangles) {
-    const BodyPart a = d.vertex_part[t[0]], b = d.vertex_part[t[1]], c = d.vertex_part[t[2]];
-    d.triangle_part.push_back(b == c ? b : a);
+    d.vertex_part.push_back(d.PartAt(dominant[i], bind_vertices[i]));
   }
 
   // Head and hands: the centroid of their vertices, in the mapped node's frame.
@@ -352,7 +399,6 @@ BodyPart SkinnedBody::JointPart(int joint) const {
   return data_->joint_part[joint];
 }
 const std::vector<BodyPart>& SkinnedBody::vertex_parts() const { return data_->vertex_part; }
-const std::vector<BodyPart>& SkinnedBody::triangle_parts() const { return data_->triangle_part; }
 int SkinnedBody::JointNode(Joint j) const { return data_->joint_node[Index(j)]; }
 Eigen::Vector3d SkinnedBody::JointOffset(Joint j) const { return data_->joint_offset[Index(j)]; }
 
@@ -497,7 +543,7 @@ Expected<SkinPose> SkinnedBody::RetargetPose(const Skeleton& target) const {
 
 void SkinnedBody::Draw(const PosedSkin& posed, const Eigen::Isometry3d& camera_from_world,
                        Rasterizer* r, SyntheticView* view, double ambient) const {
-  REENACT_CHECK(r->options().attribute_count >= 5, "drawing a skin needs 5 raster attributes");
+  REENACT_CHECK(r->options().attribute_count >= 8, "drawing a skin needs 8 raster attributes");
   const Data& d = *data_;
   REENACT_CHECK(posed.positions.size() == d.model.vertices.size(), "posed skin of another body");
   auto shader = [&](const RasterFragment& f) {
@@ -508,8 +554,9 @@ void SkinnedBody::Draw(const PosedSkin& posed, const Eigen::Isometry3d& camera_f
     for (int k = 0; k < 3; ++k)
       view->color.at(f.x, f.y, k) = static_cast<uint8_t>(std::clamp(c[k] + 0.5, 0.0, 255.0));
     view->mask.at(f.x, f.y) = 255;
+    const Vector3d bind(f.attributes[5], f.attributes[6], f.attributes[7]);
     view->part_labels.at(f.x, f.y) =
-        static_cast<uint8_t>(PartLabel(d.triangle_part[f.primitive_id]));
+        static_cast<uint8_t>(PartLabel(d.PartOfSurfacePoint(f.primitive_id, bind)));
     return true;
   };
   std::vector<RasterVertex> vertices(posed.positions.size());
@@ -518,8 +565,10 @@ void SkinnedBody::Draw(const PosedSkin& posed, const Eigen::Isometry3d& camera_f
     const SkinVertex& v = d.model.vertices[i];
     vertices[i].attributes[0] = static_cast<float>(v.uv.x());
     vertices[i].attributes[1] = static_cast<float>(v.uv.y());
-    for (int k = 0; k < 3; ++k)
+    for (int k = 0; k < 3; ++k) {
       vertices[i].attributes[2 + k] = static_cast<float>(posed.normals[i][k]);
+      vertices[i].attributes[5 + k] = static_cast<float>(d.bind_vertices[i][k]);
+    }
   }
   r->DrawMesh(vertices, d.model.triangles, {}, shader);
 }

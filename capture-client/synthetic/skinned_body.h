@@ -37,8 +37,13 @@
 // (largest weight) joint, except that a vertex dominated by the waist or a spine joint below
 // the neck is upper torso when its bind position lies above the torso joint along the
 // waist-neck line, else lower torso (so the torso's two parts meet at the torso joint, as
-// the cylinders of the skeleton do, even where one rig joint spans both). A triangle
-// carries the part most of its vertices carry (all three differing: its first vertex's).
+// the cylinders of the skeleton do, even where one rig joint spans both). A drawn pixel
+// carries the part of its surface point by the same rule, with the point's skin weights and
+// bind position interpolated from its triangle's three vertices (barycentric; the dominant
+// joint's ties to the lower joint index): so part borders run where the dominant joint
+// changes on the surface, not along the low-polygon mesh's edges (CesiumMan's triangles span
+// up to several centimetres), and the torso's two parts meet exactly at the torso joint's
+// height.
 //
 // Retargeting (RetargetPose) by bone directions, starting from the bind pose, parents first:
 //  1. pelvis: the waist joint node turns so that the skin's lower spine (waist -> torso;
@@ -136,7 +141,6 @@ class SkinnedBody {
 
   BodyPart JointPart(int joint) const;  // the part of skin joint `joint` (joint order)
   const std::vector<BodyPart>& vertex_parts() const;
-  const std::vector<BodyPart>& triangle_parts() const;
   // For our joint j: the glTF node it is attached to, and its offset in that node's frame
   // (zero but for the head and the hands); node -1 for a derived torso.
   int JointNode(Joint j) const;
@@ -144,8 +148,9 @@ class SkinnedBody {
 
   // Draws the posed skin like the procedural body (synthetic_scene.cc): colour = base colour
   // (bilinear texture sample times the factor) times LambertShade of the world normal, mask
-  // 255, part label of the triangle, depth through the rasteriser. The rasteriser needs
-  // attribute_count >= 5 (u, v, normal); back faces are culled as its options say.
+  // 255, part label of the surface point (above), depth through the rasteriser. The
+  // rasteriser needs attribute_count 8 (u, v, normal, bind position); back faces are culled
+  // as its options say.
   // ambient: LambertShade's ambient share (room.h).
   void Draw(const PosedSkin& posed, const Eigen::Isometry3d& camera_from_world, Rasterizer* r,
             SyntheticView* view, double ambient = kSceneAmbient) const;

@@ -197,7 +197,7 @@ SyntheticView SyntheticScene::Render(int frame, const PinholeCamera& camera,
   options.Check();
   RasterOptions raster;
   raster.near_z = 0.05;
-  raster.attribute_count = 6;
+  raster.attribute_count = 8;
   raster.cull = CullMode::kBack;
   Rasterizer r(camera, raster);
   SyntheticView view;
