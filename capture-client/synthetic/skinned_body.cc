@@ -280,7 +280,8 @@ Expected<SkinnedBody> SkinnedBody::Create(GltfSkinModel model, const SkinnedBody
   // The bind pose in the scene frame.
   d.bind_local = BindTransforms(model);
   const std::vector<Eigen::Affine3d> scene = SceneFromNode(model, d.bind_local);
-  std::vector<Vector3d> bind_vertices(model.vertices.size());
+  std::vector<Vector3d>& bind_vertices = d.bind_vertices;
+  bind_vertices.resize(model.vertices.size());
   {
     std::vector<Eigen::Affine3d> m(joint_count);
     for (int j = 0; j < joint_count; ++j)
@@ -361,7 +362,6 @@ Expected<SkinnedBody> SkinnedBody::Create(GltfSkinModel model, const SkinnedBody
   d.split_waist = waist;
   d.split_spine = spine;
   d.split_torso_t = torso_t;
-  d.bind_vertices = bind_vertices;
   std::vector<int> dominant(model.vertices.size());
   for (size_t i = 0; i < model.vertices.size(); ++i) {
     int k;

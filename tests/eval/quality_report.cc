@@ -86,11 +86,12 @@ std::vector<std::string> QualityRules() {
       "wrong_seen_part_rate: the same against the part the ground truth shows at that output "
       "pixel (the drawn part where the truth shows no subject), so only what the viewer sees "
       "as another part's texture counts; doubled_limb_rate: the part of that whose source "
-      "texels show a part that the ground truth shows nowhere within 5 cm of the output pixel "
-      "(measured in the image at the pixel's depth), so a seam a few centimetres off the "
-      "body's part border does not count and a doubled limb (a forearm textured with the "
-      "torso) does; "
-      "untextured_rate: share drawn in flat colour, from no source pixel.",
+      "texels show a part that the ground truth shows nowhere within " +
+          Number(100 * kDoubledLimbBorderM) +
+          " cm of the output pixel (measured in the image at the pixel's depth), so a seam a few "
+          "centimetres off the body's part border does not count and a doubled limb (a forearm "
+          "textured with the torso) does; untextured_rate: share drawn in flat colour, from no "
+          "source pixel.",
       "Provenance (source frame, source pixel, cylinder part) comes from the CPU reference "
       "renderer drawing the same draw list as the GL renderer; reference_iou is the IoU of "
       "their two silhouettes.",
