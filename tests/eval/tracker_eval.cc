@@ -10,6 +10,7 @@
 
 #include "capture-client/synthetic/synthetic_scene.h"
 #include "common/estimate/median.h"
+#include "tests/eval/body_heading.h"
 #include "tests/eval/quality_cli.h"
 
 namespace reenact::eval {
@@ -32,12 +33,10 @@ const char* kCases[] = {"back_facing", "arm_in_front", "fast_motion", "partly_ou
 std::array<bool, 4> HardCases(const Skeleton& s, const Skeleton* previous, double dt,
                               const PinholeCamera& camera) {
   std::array<bool, 4> c{};
-  const Eigen::Vector3d left = s[Joint::kLeftShoulder] - s[Joint::kRightShoulder];
-  const Eigen::Vector3d up = s[Joint::kNeck] - s[Joint::kWaist];
-  const Eigen::Vector3d forward = left.cross(up);
+  const auto forward = BodyForward(s);
   const Eigen::Vector3d to_sensor = -s[Joint::kWaist];
-  if (forward.norm() > 1e-9 && to_sensor.norm() > 1e-9)
-    c[0] = forward.normalized().dot(to_sensor.normalized()) < std::cos(120 * M_PI / 180);
+  if (forward && to_sensor.norm() > 1e-9)
+    c[0] = forward->dot(to_sensor.normalized()) < std::cos(120 * M_PI / 180);
   const auto project = [&](const Eigen::Vector3d& p) { return camera.Project(p, 0.05); };
   const auto ls = project(s[Joint::kLeftShoulder]), rs = project(s[Joint::kRightShoulder]),
              nk = project(s[Joint::kNeck]), wa = project(s[Joint::kWaist]);
@@ -98,7 +97,8 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
   row.variant = variant;
   row.iterations = iterations;
   row.subsample = subsample;
-  std::vector<double> errors, ms, cpu;
+  std::vector<double> errors, headings, ms, cpu;
+  const Eigen::Vector3d world_up = scene.world_up();
   std::optional<Skeleton> previous_truth;
   capture::TrackState last = capture::TrackState::kWaitingForCalibration;
   for (int f = 0; f < scene.frame_count(); f += step) {
@@ -130,6 +130,8 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
       ++row.tracked;
       err = Mpjpe(*r.skeleton, truth);
       errors.push_back(err);
+      const Eigen::Vector3d up = world_from_sensor.linear().transpose() * world_up;
+      if (const auto h = HeadingErrorDeg(*r.skeleton, truth, up)) headings.push_back(*h);
       joints->Add(*r.skeleton, truth);
     }
     const auto hard = HardCases(truth, previous_truth ? &*previous_truth : nullptr,
@@ -147,6 +149,12 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
   for (double e : errors) sum += e;
   row.mpjpe_cm = errors.empty() ? 0 : 100 * sum / errors.size();
   row.p90_cm = 100 * Percentile90(errors);
+  if (!headings.empty()) {
+    row.heading_deg = Median(headings);
+    row.reversed_rate = static_cast<double>(std::count_if(headings.begin(), headings.end(),
+                                                          [](double h) { return h > 90; })) /
+                        headings.size();
+  }
   row.ms_per_frame = ms.empty() ? 0 : Median(ms);
   row.cpu_ms_per_frame = cpu.empty() ? 0 : Median(cpu);
   return row;
@@ -210,6 +218,8 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
         .Add("tracked_rate", r.tracked_rate)
         .Add("mpjpe_cm", r.mpjpe_cm)
         .Add("p90_cm", r.p90_cm)
+        .Add("heading_deg", r.heading_deg)
+        .Add("reversed_rate", r.reversed_rate)
         .Add("calib_frame", static_cast<long long>(r.calibration_frame))
         .Add("losses", static_cast<long long>(r.losses))
         .Add("recoveries", static_cast<long long>(r.recoveries))

@@ -19,7 +19,10 @@
 //           and feet cut off, raised hands leave the top)
 // Figures per row: frames, tracked_rate (frames with a skeleton), mpjpe_cm (mean over the
 // tracked frames of the mean 16-joint error), p90_cm (90th percentile of the per-frame
-// errors), calibration frame, losses and recoveries, ms_per_frame (median wall time of the
+// errors), heading_deg (median over the tracked frames of the heading error, body_heading.h:
+// how far the tracked body is turned about the vertical from the truth's) and reversed_rate
+// (the share of those frames with a heading error above 90 degrees: front and back
+// confused), calibration frame, losses and recoveries, ms_per_frame (median wall time of the
 // tracker alone, rendering excluded) and its median CPU time.
 // A second table breaks every row down by the frames that show a hard case according to the
 // ground truth (a case no frame shows gets no row):
@@ -76,6 +79,7 @@ struct TrackerEvalRow {
   int iterations = 0, subsample = 0;
   int frames = 0, tracked = 0;
   double tracked_rate = 0, mpjpe_cm = 0, p90_cm = 0;
+  double heading_deg = 0, reversed_rate = 0;  // see the header comment
   int calibration_frame = -1, losses = 0, recoveries = 0;
   double ms_per_frame = 0, cpu_ms_per_frame = 0;
 };

@@ -111,6 +111,11 @@ TEST(TrackerEval, ShortRunTracksEveryFrameAndWritesTheReport) {
     // 3.5 cm (near).
     EXPECT_LT(row.mpjpe_cm, 5.0) << row.variant;
     EXPECT_LE(row.mpjpe_cm, row.p90_cm + 1e-9);  // few large errors: mean below the 90th
+    // Heading (median): shoulders each up to 5 cm off (twice the bound on the mean joint
+    // error), in opposite directions across the 37 cm shoulder line, turn it by
+    // atan(10 / 37) = 15 degrees; the subject faces the sensor, so never reversed.
+    EXPECT_LT(row.heading_deg, 15.0) << row.variant;
+    EXPECT_EQ(row.reversed_rate, 0.0) << row.variant;
     EXPECT_GT(row.ms_per_frame, 0);
   }
   // The near variant cuts the subject off at the image's lower edge.
@@ -127,7 +132,8 @@ TEST(TrackerEval, ShortRunTracksEveryFrameAndWritesTheReport) {
   fs::remove(path);
   for (const char* field :
        {"\"command\": \"tracker\"", "\"scenario\": \"turn-and-kick\"",
-        "\"mpjpe_cm\":", "\"tracked_rate\":", "\"ms_per_frame\":", "\"case\": \"partly_outside\""})
+        "\"mpjpe_cm\":", "\"tracked_rate\":", "\"heading_deg\":", "\"reversed_rate\":",
+        "\"ms_per_frame\":", "\"case\": \"partly_outside\""})
     EXPECT_NE(text.str().find(field), std::string::npos) << field << " in " << text.str();
   // The joints table: every joint of every row, over the tracked frames.
   ASSERT_EQ(run->joints.size(), 2u * kJointCount);
