@@ -27,12 +27,16 @@ double ThreadCpuMs() {
 constexpr double kNearDistanceM = 1.8;
 constexpr double kNearMaxShiftM = 1.2;
 
-const char* kCases[] = {"back_facing", "arm_in_front", "fast_motion", "partly_outside"};
+constexpr int kCaseCount = 5;
+const char* kCases[kCaseCount] = {"back_facing", "arm_in_front", "fast_motion", "partly_outside",
+                                  "turning"};
 
-// Which hard cases a ground-truth skeleton (sensor frame) shows; see the header.
-std::array<bool, 4> HardCases(const Skeleton& s, const Skeleton* previous, double dt,
-                              const PinholeCamera& camera) {
-  std::array<bool, 4> c{};
+// Which hard cases a ground-truth skeleton (sensor frame) shows; see the header. turn_deg: the
+// body's heading change since the previous frame (nullopt for the first, or undefined).
+std::array<bool, kCaseCount> HardCases(const Skeleton& s, const Skeleton* previous, double dt,
+                                       const PinholeCamera& camera,
+                                       std::optional<double> turn_deg) {
+  std::array<bool, kCaseCount> c{};
   const auto forward = BodyForward(s);
   const Eigen::Vector3d to_sensor = -s[Joint::kWaist];
   if (forward && to_sensor.norm() > 1e-9)
@@ -58,6 +62,7 @@ std::array<bool, 4> HardCases(const Skeleton& s, const Skeleton* previous, doubl
     if (!p || p->x() < 0 || p->y() < 0 || p->x() >= camera.width || p->y() >= camera.height)
       c[3] = true;
   }
+  c[4] = turn_deg && *turn_deg / dt > 60;
   return c;
 }
 
@@ -99,7 +104,7 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
   row.subsample = subsample;
   std::vector<double> errors, headings, ms, cpu;
   const Eigen::Vector3d world_up = scene.world_up();
-  std::optional<Skeleton> previous_truth;
+  std::optional<Skeleton> previous_truth, previous_world;
   capture::TrackState last = capture::TrackState::kWaitingForCalibration;
   for (int f = 0; f < scene.frame_count(); f += step) {
     if (o.max_frames > 0 && row.frames >= o.max_frames) break;
@@ -111,7 +116,8 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
       world_from_sensor.translation() += shift * world_from_sensor.linear().col(2);
     }
     const capture::SyntheticView view = scene.Render(f, camera, world_from_sensor, render);
-    const Skeleton truth = scene.skeleton_in_world(f).Transformed(world_from_sensor.inverse());
+    const Skeleton world = scene.skeleton_in_world(f);
+    const Skeleton truth = world.Transformed(world_from_sensor.inverse());
     const double cpu0 = ThreadCpuMs();
     const auto t0 = std::chrono::steady_clock::now();
     const capture::TrackFrameResult r =
@@ -134,15 +140,17 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
       if (const auto h = HeadingErrorDeg(*r.skeleton, truth, up)) headings.push_back(*h);
       joints->Add(*r.skeleton, truth);
     }
-    const auto hard = HardCases(truth, previous_truth ? &*previous_truth : nullptr,
-                                step / scene.frame_rate_hz(), camera);
-    for (int k = 0; k < 4; ++k) {
+    const auto hard = HardCases(
+        truth, previous_truth ? &*previous_truth : nullptr, step / scene.frame_rate_hz(), camera,
+        previous_world ? HeadingErrorDeg(world, *previous_world, world_up) : std::nullopt);
+    for (int k = 0; k < kCaseCount; ++k) {
       if (!hard[k]) continue;
       CaseSum& c = (*cases)[kCases[k]];
       ++c.frames;
       if (r.skeleton) ++c.tracked, c.err += err;
     }
     previous_truth = truth;
+    previous_world = world;
   }
   row.tracked_rate = row.frames ? static_cast<double>(row.tracked) / row.frames : 0;
   double sum = 0;

@@ -32,6 +32,8 @@
 //                   shoulders, neck to waist) at least 10 cm nearer than the torso joint
 //   fast_motion     some joint moved faster than 2 m/s since the previous frame
 //   partly_outside  some joint projects outside the image (the near variant)
+//   turning         the body's heading (body_heading.h) turned faster than 60 degrees per
+//                   second since the previous frame (a quarter turn in 1.5 s)
 // A third table, "joints", breaks every row down by joint over its tracked frames
 // (joint_error_table.h): mean_cm (mean error), the mean error vector bias_x/y/z_cm in the
 // ground-truth body frame of each frame (x the subject's left to its right, y forward, z up

@@ -146,6 +146,23 @@ TEST(TrackerEval, ShortRunTracksEveryFrameAndWritesTheReport) {
   EXPECT_NE(text.str().find("\"joint\": \"l_hand\""), std::string::npos);
 }
 
+TEST(TrackerEval, TurningFramesAreTheTurnsConstruction) {
+  // turn-and-kick (scenario.cc) turns the root by 2 pi SmoothStep(s), s = (t - 1.2 s) / 2.8 s,
+  // and twists the chest on it by 12 sin(2 pi s) degrees: the shoulders' heading is
+  // h(t) = 360 (3 s^2 - 2 s^3) + 12 sin(2 pi s) degrees. Its change from frame f - 1 to f,
+  // times 30 fps, exceeds 60 degrees per second from frame 41 on (40: 56.8, 41: 64.5), so 19
+  // of frames 0-59 (41-59) are turning; over all 180 frames, 76 (41-116).
+  TrackerEvalOptions o;
+  o.scenarios = {"turn-and-kick"};
+  o.max_frames = 60;
+  const auto run = RunTrackerEval(o);
+  ASSERT_TRUE(run.ok()) << run.error().message;
+  int turning = -1;
+  for (const TrackerCaseRow& c : run->cases)
+    if (c.hard_case == "turning") turning = c.frames;
+  EXPECT_EQ(turning, 19);
+}
+
 TEST(TrackerEval, BvhPlaysOnTheProceduralBody) {
   // ../shared/data from the repository root (this file is tests/eval/ in it).
   const std::string bvh =
