@@ -51,15 +51,19 @@ std::optional<Eigen::Vector3d> HorizontalForward(const ArticulatedPose& pose,
   return Horizontal(pose.root_rotation.col(0), up);
 }
 
+ArticulatedPose TurnedBy(const ArticulatedPose& pose, const Eigen::Vector3d& up, double angle_rad) {
+  ArticulatedPose out = pose;
+  if (!(up.norm() > 1e-9)) return out;
+  out.root_rotation = ExpRotation(angle_rad * up.normalized()) * pose.root_rotation;
+  return out;
+}
+
 ArticulatedPose TurnedTo(const ArticulatedPose& pose, const Eigen::Vector3d& up,
                          const Eigen::Vector3d& forward) {
   const auto from = HorizontalForward(pose, up);
   const auto to = Horizontal(forward, up);
   if (!from || !to) return pose;
-  const double angle = std::atan2(up.dot(from->cross(*to)), from->dot(*to));
-  ArticulatedPose out = pose;
-  out.root_rotation = ExpRotation(angle * up.normalized()) * pose.root_rotation;
-  return out;
+  return TurnedBy(pose, up, std::atan2(up.dot(from->cross(*to)), from->dot(*to)));
 }
 
 void TravelOptions::Check() const {

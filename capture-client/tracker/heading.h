@@ -44,6 +44,10 @@ ArticulatedPose UprightPose(const ArticulatedBody& body, const Eigen::Vector3d& 
 std::optional<Eigen::Vector3d> HorizontalForward(const ArticulatedPose& pose,
                                                  const Eigen::Vector3d& up);
 
+// The same pose turned about up by angle_rad (right-handed: counter-clockwise seen from above)
+// about the waist joint, the limbs' local rotations kept; unchanged for a zero up.
+ArticulatedPose TurnedBy(const ArticulatedPose& pose, const Eigen::Vector3d& up, double angle_rad);
+
 // The same pose turned about up by the angle from its horizontal forward to `forward` (about
 // the waist joint), the limbs' local rotations kept.
 ArticulatedPose TurnedTo(const ArticulatedPose& pose, const Eigen::Vector3d& up,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <numbers>
 
 #include "common/error/check.h"
@@ -59,6 +60,7 @@ void SkeletonTrackerOptions::Check() const {
   travel.Check();
   REENACT_CHECK(travel_flip_cos >= -1 && travel_flip_cos <= 1, "travel_flip_cos in [-1, 1]");
   REENACT_CHECK(flip_cost_tolerance >= 1, "flip_cost_tolerance must be >= 1");
+  REENACT_CHECK(turn_start_deg >= 0 && turn_start_deg < 90, "turn_start_deg must be in [0, 90)");
   REENACT_CHECK(heading_check_cooldown_frames >= 0, "heading_check_cooldown_frames must be >= 0");
   REENACT_CHECK(
       motion_calibration_frames >= 0 && motion_frame_spacing >= 1 && motion_min_leg_spread_rad >= 0,
@@ -143,6 +145,23 @@ BodyFitResult SkeletonTracker::Uncross(BodyFitResult fit, const BodyObservation&
     BodyFitResult swapped = Refine(FitBody(*body_, start, obs, options_.fit, options_.limits), obs);
     if (swapped.cost < (1 - options_.uncross_gain) * fit.cost) fit = std::move(swapped);
   }
+  return fit;
+}
+
+BodyFitResult SkeletonTracker::FitTurned(const ArticulatedPose& start, const Eigen::Vector3d& up,
+                                         double angle_rad, const BodyObservation& obs) const {
+  return Refine(FitBody(*body_, TurnedBy(start, up, angle_rad), obs, options_.fit, options_.limits),
+                obs);
+}
+
+BodyFitResult SkeletonTracker::CheaperOf(BodyFitResult fit, BodyFitResult turned) const {
+  // Points beyond outlier_m cost nothing, so a fit can cost less by losing a limb's points; the
+  // turned fit must cost less with each point it leaves unexplained counted at outlier_m too.
+  const double lost_cost = HuberCost(options_.fit.outlier_m, options_.fit.huber_m);
+  const auto with_lost = [&](const BodyFitResult& r) {
+    return r.cost + r.outlier_share * r.points * lost_cost;
+  };
+  if (turned.cost < fit.cost && with_lost(turned) < with_lost(fit)) return turned;
   return fit;
 }
 
@@ -389,8 +408,18 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
     start.root_translation += pose_.root_translation - previous_pose_.root_translation;
   KeepPointsNearBody(*body_, body_->Pose(start), options_.keep_near_model_m, &obs);
   out.points = static_cast<int>(obs.points.size());
-  BodyFitResult fit = FitBody(*body_, start, obs, options_.fit, options_.limits);
-  fit = Refine(std::move(fit), obs);
+  // The turned starts, each on a thread of its own while this one fits the prediction.
+  std::vector<std::future<BodyFitResult>> turned;
+  if (options_.turn_start_deg > 0 && blob.floor_in_sensor) {
+    const Eigen::Vector3d up = blob.floor_in_sensor->normal;
+    const double angle = options_.turn_start_deg * std::numbers::pi / 180;
+    for (const double a : {-angle, angle})
+      turned.push_back(std::async(std::launch::async, [this, &start, &obs, up, a] {
+        return FitTurned(start, up, a, obs);
+      }));
+  }
+  BodyFitResult fit = Refine(FitBody(*body_, start, obs, options_.fit, options_.limits), obs);
+  for (std::future<BodyFitResult>& t : turned) fit = CheaperOf(std::move(fit), t.get());
   if (options_.uncross_limbs) fit = Uncross(std::move(fit), obs);
   if (options_.limb_recheck_hypotheses > 0) {
     fit = RecheckLimb(std::move(fit), obs, static_cast<Limb>(recheck_limb_));

@@ -45,7 +45,7 @@ constexpr const char* kUsage =
     "  reenact-eval tracker [--scenario S[,S...]] [--variants normal,fast,near]\n"
     "                       [--iterations N,...] [--subsample K,...]\n"
     "                       [--body FILE.glb|procedural] [--limb-recheck N]\n"
-    "                       [--noise on|off] [--json FILE]\n"
+    "                       [--turn-starts DEG] [--noise on|off] [--json FILE]\n"
     "      the depth skeleton tracker against the synthetic ground-truth skeleton (default\n"
     "      turn-and-kick,walk-handheld; bvh:FILE plays on --body, default CesiumMan; an\n"
     "      explicit --body plays every scenario on it, --body procedural on the procedural\n"
@@ -55,7 +55,9 @@ constexpr const char* kUsage =
     "      joint: mean error, bias (mean error vector in the body frame: x to the subject's\n"
     "      right, y forward, z up the spine) and spread (RMS about the bias), cm;\n"
     "      --limb-recheck N: every frame one limb in turn re-fitted from its N best\n"
-    "      re-posings (default 0: off; 3 measured)\n";
+    "      re-posings (default 0: off; 3 measured); --turn-starts DEG: every frame the\n"
+    "      fit also started from the prediction turned by -DEG and +DEG about up, the\n"
+    "      cheapest kept (default 25; 0: off)\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-eval", e); }
 

@@ -4,10 +4,13 @@
 //
 //   reenact-eval tracker [--scenario S[,S...]] [--variants V[,V...]] [--iterations N[,N...]]
 //                        [--subsample K[,K...]] [--body FILE.glb|procedural]
-//                        [--limb-recheck N] [--noise on|off] [--json FILE]
+//                        [--limb-recheck N] [--turn-starts DEG] [--noise on|off]
+//                        [--json FILE]
 //
 // --limb-recheck N: the tracker's limb re-check with N hypotheses, 0 = off
 // (SkeletonTrackerOptions::limb_recheck_hypotheses, default 0; see docs/measurements.md).
+// --turn-starts DEG: the tracker's turned starts, +-DEG degrees about up, 0 = off
+// (SkeletonTrackerOptions::turn_start_deg, default 25).
 // Per scenario, variant and speed setting (iterations x subsample), every sensor frame is
 // rendered with Kinect-like depth noise (on by default) and tracked, frames in order through
 // one tracker that is given the sensor pose and the world's up (as the synthetic source gives
@@ -23,7 +26,7 @@
 // how far the tracked body is turned about the vertical from the truth's) and reversed_rate
 // (the share of those frames with a heading error above 90 degrees: front and back
 // confused), calibration frame, losses and recoveries, ms_per_frame (median wall time of the
-// tracker alone, rendering excluded) and its median CPU time.
+// tracker alone, rendering excluded) and its median CPU time (all of the tracker's threads).
 // A second table breaks every row down by the frames that show a hard case according to the
 // ground truth (a case no frame shows gets no row):
 //   back_facing     the body's forward ((l_shoulder - r_shoulder) x (neck - waist)) points
@@ -127,8 +130,9 @@ std::set<std::string> TrackerFlags();
 
 // --body procedural: every scenario on the procedural body (body_path empty, body_for_all).
 // Errors (code "usage", naming the flag): empty lists or names, numbers that are not whole
-// numbers >= 1, an unknown variant, --limb-recheck other than one number from 0 to 26, --noise
-// other than on or off; ("io") an unwritable --json.
+// numbers >= 1, an unknown variant, --limb-recheck other than one number from 0 to 26,
+// --turn-starts other than one number from 0 to 89, --noise other than on or off; ("io") an
+// unwritable --json.
 Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& command_line);
 
 }  // namespace reenact::eval

@@ -36,6 +36,7 @@ TEST(TrackerCli, Defaults) {
   EXPECT_FALSE(r->options.body_for_all);
   EXPECT_EQ(r->options.tracker.limb_recheck_hypotheses,
             capture::SkeletonTrackerOptions{}.limb_recheck_hypotheses);
+  EXPECT_EQ(r->options.tracker.turn_start_deg, capture::SkeletonTrackerOptions{}.turn_start_deg);
   EXPECT_FALSE(r->json_path);
 }
 
@@ -55,6 +56,10 @@ TEST(TrackerCli, Flags) {
   const auto off = Parse({"--limb-recheck", "0"});
   ASSERT_TRUE(off.ok()) << off.error().message;
   EXPECT_EQ(off->options.tracker.limb_recheck_hypotheses, 0);
+  const auto turns = Parse({"--turn-starts", "0"});
+  ASSERT_TRUE(turns.ok()) << turns.error().message;
+  EXPECT_EQ(turns->options.tracker.turn_start_deg, 0);
+  EXPECT_EQ(Parse({"--turn-starts", "40"})->options.tracker.turn_start_deg, 40);
 }
 
 TEST(TrackerCli, BodyProceduralPlaysEveryScenarioOnTheProceduralBody) {
@@ -82,6 +87,9 @@ TEST(TrackerCli, BadInputIsRefused) {
   ExpectUsage({"--limb-recheck", ""}, "--limb-recheck");
   ExpectUsage({"--limb-recheck", "27"}, "--limb-recheck");
   ExpectUsage({"--limb-recheck", "2,3"}, "--limb-recheck");
+  ExpectUsage({"--turn-starts", "90"}, "--turn-starts takes one whole number from 0 (off) to 89");
+  ExpectUsage({"--turn-starts", "-5"}, "--turn-starts");
+  ExpectUsage({"--turn-starts", "12.5"}, "--turn-starts");
   const auto json = Parse({"--json", "/nonexistent-folder/out.json"});
   ASSERT_FALSE(json.ok());
   EXPECT_EQ(json.error().code, "io");

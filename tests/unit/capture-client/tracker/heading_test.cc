@@ -50,6 +50,31 @@ TEST(Heading, UprightPoseStandsOnTheGroundFacingForward) {
   EXPECT_TRUE(t.root_translation.isApprox(p.root_translation));
 }
 
+TEST(Heading, TurnedByTurnsTheWholeBodyAboutTheWaist) {
+  const ArticulatedBody body(BodyShape::FromHeight(1.7));
+  const Eigen::Vector3d ground(0, 1.3, 3), forward(0, 0, -1);
+  ArticulatedPose p = UprightPose(body, ground, kUp, forward);
+  p.hinge_angle[static_cast<int>(BodySegment::kLeftForearm)] = 0.8;  // limbs kept as they are
+  const ArticulatedPose t = TurnedBy(p, 2 * kUp, std::numbers::pi / 6);
+  // Turning by +30 degrees about up (-y) takes forward -z towards up x forward = +x.
+  const Eigen::Vector3d expected(0.5, 0, -std::sqrt(3.0) / 2);
+  EXPECT_NEAR(HorizontalForward(t, kUp)->dot(expected), 1, 1e-12);
+  EXPECT_TRUE(t.root_translation.isApprox(p.root_translation));
+  EXPECT_EQ(t.hinge_angle, p.hinge_angle);
+  // Every joint keeps its height and its distance from the waist's vertical.
+  const Skeleton a = body.Pose(p).skeleton, b = body.Pose(t).skeleton;
+  for (int j = 0; j < kJointCount; ++j) {
+    const Eigen::Vector3d da = a[static_cast<Joint>(j)] - p.root_translation;
+    const Eigen::Vector3d db = b[static_cast<Joint>(j)] - t.root_translation;
+    EXPECT_NEAR(da.dot(kUp), db.dot(kUp), 1e-12);
+    EXPECT_NEAR(da.norm(), db.norm(), 1e-12);
+  }
+  // TurnedTo is the same turn, to a heading.
+  EXPECT_TRUE(TurnedTo(p, kUp, expected).root_rotation.isApprox(t.root_rotation, 1e-12));
+  // A zero up turns nothing.
+  EXPECT_TRUE(TurnedBy(p, Eigen::Vector3d::Zero(), 1.0).root_rotation.isApprox(p.root_rotation));
+}
+
 TEST(Heading, TravelNeedsTheMinimumDistanceWithinTheWindow) {
   TravelDirection travel({.window_frames = 5, .max_window_frames = 5});
   EXPECT_FALSE(travel.Direction(kUp));
