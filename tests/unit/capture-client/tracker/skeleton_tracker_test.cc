@@ -313,11 +313,12 @@ FastTurn TrackFastTurn(const SkeletonTrackerOptions& options) {
     const TrackFrameResult r = TrackFrame(&tracker, f);
     EXPECT_TRUE(r.skeleton) << f;
     if (!r.skeleton) continue;
+    const Skeleton truth = Truth(f);
     const Eigen::Vector3d up =
         Scene().world_from_sensor(f).linear().transpose() * Scene().world_up();
     out.worst_heading_deg =
-        std::max(out.worst_heading_deg, HeadingError(*r.skeleton, Truth(f), up) * 180 / M_PI);
-    out.mpjpe += Mpjpe(*r.skeleton, Truth(f));
+        std::max(out.worst_heading_deg, HeadingError(*r.skeleton, truth, up) * 180 / M_PI);
+    out.mpjpe += Mpjpe(*r.skeleton, truth);
     ++n;
   }
   if (n > 0) out.mpjpe /= n;
