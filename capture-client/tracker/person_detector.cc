@@ -23,7 +23,8 @@ void PersonDetectOptions::Check() const {
   REENACT_CHECK(max_top_width_m > 0, "max_top_width_m must be > 0");
   REENACT_CHECK(max_jump_m > 0, "max_jump_m must be > 0");
   REENACT_CHECK(min_region_pixels >= 1, "min_region_pixels must be >= 1");
-  REENACT_CHECK(merge_step_m >= 0, "merge_step_m must be >= 0");
+  REENACT_CHECK(merge_step_m >= 0 && tracking_merge_step_m >= 0,
+                "merge_step_m and tracking_merge_step_m must be >= 0");
   segment.Check();
 }
 
@@ -190,6 +191,8 @@ PersonBlob PersonDetector::Detect(const ImageDepthMm& depth,
     int a, b;
   };
   std::vector<Contact> contacts;
+  const double merge_step =
+      previous_centroid ? options_.tracking_merge_step_m : options_.merge_step_m;
   {
     std::unordered_map<uint64_t, double> gaps;
     for (int y = 0; y < gh; ++y)
@@ -199,7 +202,7 @@ PersonBlob PersonDetector::Detect(const ImageDepthMm& depth,
         for (const int j : {x + 1 < gw ? i + 1 : -1, y + 1 < gh ? i + gw : -1}) {
           if (j < 0 || label_[j] < 0 || label_[j] == label_[i]) continue;
           const double gap = std::abs(point[i].z() - point[j].z());
-          if (gap > options_.merge_step_m) continue;
+          if (gap > merge_step) continue;
           const uint64_t a = std::min(label_[i], label_[j]), b = std::max(label_[i], label_[j]);
           auto [it, inserted] = gaps.emplace((a << 32) | b, gap);
           if (!inserted) it->second = std::min(it->second, gap);

@@ -10,9 +10,10 @@
 //  3. Connected regions (4-connected on the grid) joining neighbours whose depths differ by at
 //     most depth_step(z) + grid_step_px z / fx (the depth noise plus a 45-degree slope).
 //  4. Merging: regions that touch in the image with a depth gap of at most merge_step_m (an
-//     arm in front of the torso, a body split where a limb covers its side) are merged,
-//     smallest gap first, as long as the union stays within the size limits below (so a
-//     person never merges with a wall or a large object).
+//     arm in front of the torso, a body split where a limb covers its side; while tracking,
+//     tracking_merge_step_m: also a hand raised behind the head) are merged, smallest gap
+//     first, as long as the union stays within the size limits below (so a person never
+//     merges with a wall or a large object).
 //  5. The person: among the merged regions that are human-sized (top between min_top_m and
 //     max_height_m above the floor, bottom within max_bottom_m of it unless the region
 //     reaches the image's lower edge, horizontal extent at most max_extent_m, area between
@@ -51,6 +52,10 @@ struct PersonDetectOptions {
   double max_jump_m = 0.8;       // centroid movement between frames when tracking, > 0
   int min_region_pixels = 40;    // grid pixels, >= 1
   double merge_step_m = 0.4;     // largest depth gap merged across, >= 0
+  // The same while tracking (a previous centroid given), >= 0: the tracker keeps only the
+  // points near the body it predicts, so a larger gap can be bridged (a hand raised behind the
+  // head, 50-60 cm deeper than the face).
+  double tracking_merge_step_m = 0.8;
   // Floor fit and clearance, region-growing depth step: as the person segmenter's.
   PersonSegmentOptions segment;
 

@@ -10,7 +10,8 @@
 //    proportions for its standing height (ProportionalBody), placed as when recovering from
 //    the silhouette (below); its bone lengths are less exact.
 //  - Tracking: detect the person near its previous centroid (of the points the last fit
-//    explained, so that an object once merged with the person does not pull it), keep the points
+//    explained, so that an object once merged with the person does not pull it; across the
+//    detector's larger tracking_merge_step_m, so a hand behind the head stays), keep the points
 //    within keep_near_model_m of the predicted body (the previous pose, its root moved by the last
 //    frame's root motion: an object that touches the person is left out), fit the
 //    articulated body (body_fit.h) from the prediction, and from the prediction turned either

@@ -92,6 +92,41 @@ TEST(PersonDetector, TwoBlobsGiveTheLargerOrTheOneNearThePreviousCentroid) {
   EXPECT_EQ(gone.status, DetectStatus::kNoPerson);
 }
 
+TEST(PersonDetector, AHandBehindTheHeadJoinsThePersonOnlyWhileTracking) {
+  // A person 1.7 m tall at 3 m (front at 2.82 m) and a "hand" 10 cm thick held up behind its
+  // head, from 1.5 to 2.0 m above the floor at 3.5 m (front at 3.45 m): from the sensor, 1.3 m
+  // high, the part above 1.79 m shows above the head, 0.55-0.63 m deeper than the head's
+  // edge. That gap lies between merge_step_m (0.4) and tracking_merge_step_m (0.8).
+  RayScene scene;
+  scene.people = {Cylinder{0, 3.0, 0.18, 1.7}, Cylinder{0.1, 3.5, 0.05, 2.0, 1.5}};
+  const ImageDepthMm depth = RenderDepth(scene, kCamera);
+  PersonDetector detector(kCamera, 0.001);
+  const PersonBlob found = detector.Detect(depth);
+  ASSERT_EQ(found.status, DetectStatus::kOk);
+  for (const Eigen::Vector3d& p : found.points) ASSERT_LT(p.z(), 3.0);  // the person alone
+  EXPECT_NEAR(found.top_height_m, 1.7, 0.02);
+  const PersonBlob tracked = detector.Detect(depth, std::nullopt, std::nullopt, found.centroid);
+  ASSERT_EQ(tracked.status, DetectStatus::kOk);
+  int hand = 0;
+  for (const Eigen::Vector3d& p : tracked.points) {
+    if (p.z() < 3.0) continue;
+    ++hand;
+    EXPECT_NEAR(p.x(), 0.1, 0.05 + 0.01);  // its radius and the 2 px grid
+    EXPECT_GT(1.3 - p.y(), 1.79 - 0.02);   // the part above the head
+  }
+  EXPECT_GT(hand, 20);  // 10 x 21 cm at 3.45 m: about 7 x 15 grid pixels
+  EXPECT_NEAR(tracked.top_height_m, 2.0, 0.02);
+  EXPECT_EQ(tracked.points.size(), found.points.size() + hand);
+  // With the acquisition's gap while tracking, the hand stays apart.
+  PersonDetectOptions narrow;
+  narrow.tracking_merge_step_m = narrow.merge_step_m;
+  PersonDetector narrow_detector(kCamera, 0.001, narrow);
+  const PersonBlob apart =
+      narrow_detector.Detect(depth, std::nullopt, std::nullopt, found.centroid);
+  ASSERT_EQ(apart.status, DetectStatus::kOk);
+  EXPECT_EQ(apart.points.size(), found.points.size());
+}
+
 TEST(PersonDetector, ObjectsOfTheWrongSizeAreNoPerson) {
   RayScene scene;
   scene.people = {Cylinder{0, 3.0, 0.18, 0.4},    // too low (a box)
@@ -107,6 +142,9 @@ TEST(PersonDetector, ADepthImageOfTheWrongSizeIsABug) {
   PersonDetectOptions bad;
   bad.grid_step_px = 0;
   EXPECT_THROW(PersonDetector(kCamera, 0.001, bad), CheckError);
+  PersonDetectOptions negative_gap;
+  negative_gap.tracking_merge_step_m = -0.1;
+  EXPECT_THROW(PersonDetector(kCamera, 0.001, negative_gap), CheckError);
 }
 
 }  // namespace

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
+#include <string>
 
 #include "capture-client/synthetic/synthetic_scene.h"
 #include "common/error/check.h"
@@ -328,25 +330,26 @@ FastTurn TrackFastTurn(const SkeletonTrackerOptions& options) {
 TEST(SkeletonTracker, TurnedStartsFollowAFastTurn) {
   // The turn (360 degrees in 1.2-4.0 s, scenario.h: smoothstep plus a 12-degree wobble) turns
   // up to about 35 degrees between these frames. Fitted from the last pose alone, the track
-  // falls behind and ends facing backwards (measured: 180 degrees off, 13 cm mean). Started
-  // also from the last pose turned by 25 degrees either way, the cheapest fit is within the
-  // local fit's reach of the truth on every frame (measured: 10 degrees at worst, 3.1 cm).
-  // Bounds: 20 degrees (the shoulders turn up to about 10 degrees against the pelvis, whose
-  // heading the fit turns; half the starts' spacing again for a frame between them), and the
-  // issue's 5 cm.
+  // falls behind (measured: up to 80 degrees, 8.2 cm mean; before the tracking merge step it
+  // ended facing backwards, 180 degrees and 13 cm). Started also from the last pose turned by
+  // 25 degrees either way, the cheapest fit is within the local fit's reach of the truth on
+  // every frame (measured: 10 degrees at worst, 3.1 cm). Bounds: 20 degrees (the shoulders
+  // turn up to about 10 degrees against the pelvis, whose heading the fit turns; half the
+  // starts' spacing again for a frame between them), and the 5 cm; without the
+  // turned starts, more than twice that 20 degrees.
   SkeletonTrackerOptions without;
   without.turn_start_deg = 0;
-  EXPECT_GT(TrackFastTurn(without).worst_heading_deg, 90);
+  EXPECT_GT(TrackFastTurn(without).worst_heading_deg, 45);
   const FastTurn with = TrackFastTurn(SkeletonTrackerOptions{});
   EXPECT_LT(with.worst_heading_deg, 20);
   EXPECT_LT(with.mpjpe, 0.05);
 }
 
-// The CMU walk 131_01 (real motion capture) on the procedural body, tracked from its first
-// frame as the tracker evaluation does (Kinect-like depth noise, the default setting): the
-// mean error of both hands over frames 90-124, in metres. The subject turns there, and a
-// track whose arms take each other's points keeps them crossed (docs/measurements.md).
-double CmuWalkHandError(const SkeletonTrackerOptions& options) {
+// The mean error of `hands` over frames [first, end) of the CMU walk 131_01 (real motion
+// capture) on the procedural body, tracked from its first frame as the tracker evaluation
+// does (Kinect-like depth noise), in metres.
+double CmuWalkHandError(const SkeletonTrackerOptions& options, int first, int end,
+                        std::initializer_list<Joint> hands) {
   const std::string bvh = std::string(REENACT_SHARED_DATA_DIR) + "/mocap/cmu-131_01-walk.bvh";
   static const SyntheticScene scene = SyntheticScene::Create("bvh:" + bvh, 1).value();
   SkeletonTracker tracker(scene.sensor_camera(), 0.001, options);
@@ -354,18 +357,23 @@ double CmuWalkHandError(const SkeletonTrackerOptions& options) {
   render.depth_noise = true;
   double sum = 0;
   int n = 0;
-  for (int f = 0; f < 125; ++f) {
+  for (int f = 0; f < end; ++f) {
     const TrackFrameResult r = tracker.Track(scene.RenderSensor(f, render).depth,
                                              scene.world_from_sensor(f), scene.world_up());
-    if (f < 90) continue;
+    if (f < first) continue;
     const Skeleton truth =
         scene.skeleton_in_world(f).Transformed(scene.world_from_sensor(f).inverse());
     EXPECT_TRUE(r.skeleton) << f;
     if (!r.skeleton) continue;
-    for (const Joint hand : {Joint::kLeftHand, Joint::kRightHand})
-      sum += ((*r.skeleton)[hand] - truth[hand]).norm(), ++n;
+    for (const Joint hand : hands) sum += ((*r.skeleton)[hand] - truth[hand]).norm(), ++n;
   }
   return n ? sum / n : 1e9;
+}
+
+// Frames 90-124 of the walk: the subject turns there, and a track whose arms take each
+// other's points keeps them crossed (docs/measurements.md).
+double CmuWalkTurnHandError(const SkeletonTrackerOptions& options) {
+  return CmuWalkHandError(options, 90, 125, {Joint::kLeftHand, Joint::kRightHand});
 }
 
 TEST(SkeletonTracker, UncrossesArmsThatTookEachOthersPoints) {
@@ -377,10 +385,21 @@ TEST(SkeletonTracker, UncrossesArmsThatTookEachOthersPoints) {
   SkeletonTrackerOptions without;
   without.uncross_limbs = false;
   without.turn_start_deg = 0;
-  EXPECT_GT(CmuWalkHandError(without), 0.30);
+  EXPECT_GT(CmuWalkTurnHandError(without), 0.30);
   SkeletonTrackerOptions with = without;
   with.uncross_limbs = true;
-  EXPECT_LT(CmuWalkHandError(with), 0.10);
+  EXPECT_LT(CmuWalkTurnHandError(with), 0.10);
+}
+
+TEST(SkeletonTracker, FollowsAHandRaisedBehindTheHead) {
+  // From frame 200 of the walk the subject raises the right hand behind its head, 50-60 cm
+  // deeper than the face. With the acquisition's merge_step_m (0.4) while tracking, the hand
+  // is a region apart and the model's hand hangs down, 44-47 cm off through frames 202-248
+  // (measured with reenact-eval; not repeated here, a second run of 216 frames). Bridged
+  // while tracking (tracking_merge_step_m 0.8; the detector's own test shows the bridge) the
+  // fit reaches the hand as it rises and keeps it once the head hides it: 1-8 cm (bound 10,
+  // as above).
+  EXPECT_LT(CmuWalkHandError(SkeletonTrackerOptions{}, 205, 216, {Joint::kRightHand}), 0.10);
 }
 
 }  // namespace

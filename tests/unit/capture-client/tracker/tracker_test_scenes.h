@@ -1,7 +1,8 @@
 #pragma once
 // Depth images built by ray casting simple geometry, for the tracker's tests: a level sensor
 // 1.3 m above a floor, a back wall, and upright cylinders standing on the floor (people of
-// known size and place). Sensor frame: OpenCV axes, so the floor is the plane y = 1.3.
+// known size and place) or held above it (a raised hand). Sensor frame: OpenCV axes, so the
+// floor is the plane y = 1.3.
 
 #include <algorithm>
 #include <cmath>
@@ -17,6 +18,7 @@ struct Cylinder {
   double x = 0, z = 3;  // axis position, metres
   double radius = 0.18;
   double height = 1.7;  // above the floor
+  double bottom = 0;    // its lower end above the floor (0: standing on it)
 };
 
 struct RayScene {
@@ -42,7 +44,7 @@ inline ImageDepthMm RenderDepth(const RayScene& scene, const PinholeCamera& cam)
         if (disc < 0) continue;
         const double hit = (-b - std::sqrt(disc)) / (2 * a);
         const double y = hit * dy;  // the floor is at y = sensor_height, the top above it
-        if (hit > 0 && y <= scene.sensor_height && y >= scene.sensor_height - c.height)
+        if (hit > 0 && y <= scene.sensor_height - c.bottom && y >= scene.sensor_height - c.height)
           t = std::min(t, hit);
       }
       if (std::isfinite(t) && t < 60) depth.at(u, v) = static_cast<uint16_t>(std::lround(t * 1000));
