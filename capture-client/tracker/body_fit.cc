@@ -16,6 +16,28 @@ using Mat = Eigen::Matrix<double, kN, kN>;
 using Vec = Eigen::Matrix<double, kN, 1>;
 using Row = Eigen::Matrix<double, 1, kN>;
 
+// The share of a capsule of radius r about the segment a-b (sensor frame) that projects inside
+// the camera's image: at kImageShareSamples points spread along the axis, the share of the
+// square of the capsule's projected width around the point's pixel that lies in the image;
+// 0 at points behind the sensor.
+constexpr int kImageShareSamples = 8;
+double ShareInImage(const PinholeCamera& camera, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                    double r) {
+  const auto inside = [](double centre, double half, double size) {
+    return std::clamp((std::min(centre + half, size) - std::max(centre - half, 0.0)) / (2 * half),
+                      0.0, 1.0);
+  };
+  double sum = 0;
+  for (int k = 0; k < kImageShareSamples; ++k) {
+    const Eigen::Vector3d q = a + (k + 0.5) / kImageShareSamples * (b - a);
+    const auto px = camera.Project(q, 0.1);
+    if (!px) continue;
+    const double hx = camera.fx * r / q.z(), hy = camera.fy * r / q.z();
+    sum += inside(px->x(), hx, camera.width) * inside(px->y(), hy, camera.height);
+  }
+  return sum / kImageShareSamples;
+}
+
 // 1D squared Euclidean distance transform (Felzenszwalb and Huttenlocher 2012).
 void Edt1d(const std::vector<double>& f, std::vector<double>* d, std::vector<int>* v,
            std::vector<double>* z) {
@@ -328,7 +350,8 @@ BodyFitResult FitBody(const ArticulatedBody& body, const ArticulatedPose& start,
     const double across = (ab - ab.dot(ray) * ray).norm();
     const double area = 2 * c.radius * across + std::numbers::pi * c.radius * c.radius;
     result.expected_support[static_cast<int>(c.segment)] +=
-        area * cam.fx * cam.fy / (mid.z() * mid.z()) / (spacing * spacing);
+        ShareInImage(cam, a, b, c.radius) * area * cam.fx * cam.fy / (mid.z() * mid.z()) /
+        (spacing * spacing);
   }
   double support = 0, expected = 0;
   for (int k = 0; k < kBodySegmentCount; ++k)

@@ -79,7 +79,8 @@ struct BodyFitResult {
   double rms_m = 0;             // RMS of e over the points within outlier_m
   double silhouette_rms_m = 0;  // RMS of the silhouette/free-space residuals over the samples
   // Inlier points per segment, and the visible area the segment's capsules would cover
-  // (projected silhouette, grid pixels at the data's subsampling) for comparison.
+  // (projected silhouette, grid pixels at the data's subsampling) for comparison; only the
+  // part within the image counts (a part beyond the image's edge is not seen, not missing).
   std::array<int, kBodySegmentCount> support{};
   std::array<double, kBodySegmentCount> expected_support{};
   // Sum of support over sum of expected_support: the share of the model's silhouette the

@@ -19,14 +19,15 @@
 //    When many points are left unexplained, limbs are re-posed by a hypothesis search
 //    (limb_search.h) and fitted again; optionally, every frame one limb in turn is
 //    re-checked from its best few hypotheses, each fitted (limb_recheck_hypotheses, below). A fit
-//    is good when the data covers at least min_coverage of the model's silhouette
-//    (BodyFitResult::coverage: a model that slid off the person covers little; 0.4-0.65 is usual,
-//    the body hiding its own parts) and at least good_inlier_share of the points lie within
-//    inlier_m of the model's surface. Unexplained points alone (an object touching the person) do
-//    not make a fit bad. Bone lengths are fixed by construction and joint limits are enforced on
-//    every step, so neither can be violated; a failed detection or a bad fit counts as a bad frame,
-//    and lost_after_frames bad frames in a row mean the track is lost. Bad frames before that still
-//    give a skeleton, its confidences halved.
+//    is good when the data covers at least min_coverage of the model's silhouette within the
+//    image (BodyFitResult::coverage: a model that slid off the person covers little; 0.4-0.65 is
+//    usual, the body hiding its own parts; a subject partly beyond the image's edge keeps it) and
+//    at least good_inlier_share of the points lie within inlier_m of the model's surface.
+//    Unexplained points alone (an object touching the person) do not make a fit bad. Bone lengths
+//    are fixed by construction and joint limits are enforced on every step, so neither can be
+//    violated; a failed detection or a bad fit counts as a bad frame, and lost_after_frames bad
+//    frames in a row mean the track is lost. Bad frames before that still give a skeleton, its
+//    confidences halved.
 //  - Lost: recovery each frame, either from the calibration pose (when the person shows it
 //    again) or from the silhouette: the calibrated body placed upright on the blob (the
 //    waist above the floor under the blob's centroid, arms and legs straight down) facing
