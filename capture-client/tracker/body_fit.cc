@@ -14,7 +14,6 @@ namespace {
 constexpr int kN = ArticulatedBody::kParameterCount;
 using Mat = Eigen::Matrix<double, kN, kN>;
 using Vec = Eigen::Matrix<double, kN, 1>;
-using Row = Eigen::Matrix<double, 1, kN>;
 
 // The share of a capsule of radius r about the segment a-b (sensor frame) that projects inside
 // the camera's image: at kImageShareSamples points spread along the axis, the share of the
@@ -120,9 +119,15 @@ class Problem {
  public:
   Problem(const ArticulatedBody& body, const BodyObservation& obs, const BodyFitOptions& o)
       : body_(body), obs_(obs), o_(o) {
-    for (int s = 0; s < kBodySegmentCount; ++s)
-      for (int a = s; a >= 0; a = SegmentParent(static_cast<BodySegment>(a)))
+    for (int s = 0; s < kBodySegmentCount; ++s) {
+      params_[s] = {0, 1, 2};  // the root's translation
+      for (int a = s; a >= 0; a = SegmentParent(static_cast<BodySegment>(a))) {
         chain_[s].push_back(a);
+        const BodySegment seg = static_cast<BodySegment>(a);
+        const int k = ArticulatedBody::ParameterIndex(seg);
+        for (int i = 0; i < (IsHinge(seg) ? 1 : 3); ++i) params_[s].push_back(k + i);
+      }
+    }
   }
 
   struct Evaluation {
@@ -137,21 +142,35 @@ class Problem {
 
   Evaluation Evaluate(const PosedBody3& posed, bool jacobian) const {
     Evaluation ev;
+    for (std::vector<double>& r : rows_) r.clear();
     std::vector<PosedCapsule> caps;
+    // Each capsule's bounding sphere: its axis's midpoint, half its length plus its radius.
+    std::vector<std::pair<Eigen::Vector3d, double>> spheres;
     for (const BodyCapsule& c : body_.capsules()) {
       const Eigen::Isometry3d& t = posed.sensor_from_segment[static_cast<int>(c.segment)];
       caps.push_back({static_cast<int>(c.segment), t * c.a, t * c.b, c.radius});
+      spheres.emplace_back(0.5 * (caps.back().a + caps.back().b),
+                           0.5 * (caps.back().b - caps.back().a).norm() + c.radius);
     }
+    nearest_.resize(obs_.points.size(), -1);
     const double delta = o_.huber_m;
-    for (const Eigen::Vector3d& p : obs_.points) {
+    for (size_t i = 0; i < obs_.points.size(); ++i) {
+      const Eigen::Vector3d& p = obs_.points[i];
+      // The nearest capsule (the first of equals), starting from the last evaluation's: a
+      // capsule whose bounding sphere lies farther than the best residual so far is passed.
+      int bi = nearest_[i];
       double best = std::numeric_limits<double>::infinity();
-      int bi = -1;
       Eigen::Vector3d bc;
-      for (size_t k = 0; k < caps.size(); ++k) {
+      if (bi >= 0) bc = NearestOnAxis(caps[bi], p), best = (p - bc).norm() - caps[bi].radius;
+      for (int k = 0; k < static_cast<int>(caps.size()); ++k) {
+        if (k == nearest_[i]) continue;
+        const double r = spheres[k].second + best;
+        if ((p - spheres[k].first).squaredNorm() > r * r) continue;
         const Eigen::Vector3d c = NearestOnAxis(caps[k], p);
         const double e = (p - c).norm() - caps[k].radius;
-        if (e < best) best = e, bi = static_cast<int>(k), bc = c;
+        if (e < best || (e == best && k < bi)) best = e, bi = k, bc = c;
       }
+      nearest_[i] = bi;
       if (bi < 0 || best > o_.outlier_m) {
         ++ev.outliers;
         continue;
@@ -166,7 +185,7 @@ class Problem {
       const double dn = d.norm();
       if (dn < 1e-9) continue;
       const double w = ae <= delta ? 1.0 : delta / ae;
-      Accumulate(posed, caps[bi].segment, bc, -d / dn, best, w, &ev);
+      Accumulate(posed, caps[bi].segment, bc, -d / dn, best, w);
     }
     // Silhouette and free space.
     const int m = o_.samples_per_capsule;
@@ -182,40 +201,69 @@ class Problem {
           ++ev.samples;
           ev.sil_sq += e * e;
           ev.cost += 0.5 * w * e * e;
-          if (jacobian) Accumulate(posed, c.segment, q, grad, e, w, &ev);
+          if (jacobian) Accumulate(posed, c.segment, q, grad, e, w);
         }
     }
+    if (jacobian) SumRows(&ev);
     return ev;
   }
 
  private:
-  // Adds w * J^T J and w * J^T e for a residual e whose gradient with respect to the point x
-  // (carried by segment s) is gx.
+  // Adds the row of a residual e whose gradient with respect to the point x (carried by
+  // segment s) is gx, weighted by w, to the segment's rows (see rows_).
   void Accumulate(const PosedBody3& posed, int s, const Eigen::Vector3d& x,
-                  const Eigen::Vector3d& gx, double e, double w, Evaluation* ev) const {
-    Row row = Row::Zero();
-    row.segment<3>(0) = gx.transpose();
+                  const Eigen::Vector3d& gx, double e, double w) const {
+    const double sw = std::sqrt(w);
+    std::vector<double>& r = rows_[s];
+    r.insert(r.end(), {sw * gx.x(), sw * gx.y(), sw * gx.z()});
     for (int a : chain_[s]) {
       const BodySegment seg = static_cast<BodySegment>(a);
       const Eigen::Isometry3d& t = posed.sensor_from_segment[a];
-      const Eigen::Vector3d moment = (x - t.translation()).cross(gx);
-      const int k = ArticulatedBody::ParameterIndex(seg);
+      const Eigen::Vector3d moment = sw * (x - t.translation()).cross(gx);
       if (IsHinge(seg)) {
         const double sign =
             seg == BodySegment::kLeftForearm || seg == BodySegment::kRightForearm ? -1.0 : 1.0;
-        row[k] = sign * t.linear().col(1).dot(moment);
+        r.push_back(sign * t.linear().col(1).dot(moment));
       } else {
-        row.segment<3>(k) = moment.transpose();
+        r.insert(r.end(), {moment.x(), moment.y(), moment.z()});
       }
     }
-    ev->H.noalias() += w * row.transpose() * row;
-    ev->g.noalias() += w * e * row.transpose();
+    r.push_back(sw * e);
+  }
+
+  // H = sum of w J^T J and g = sum of w J^T e over the rows, one product per segment over its
+  // chain's parameters, scattered into the full parameter vector.
+  void SumRows(Evaluation* ev) const {
+    for (int s = 0; s < kBodySegmentCount; ++s) {
+      const std::vector<int>& k = params_[s];
+      const int n = static_cast<int>(k.size());
+      const int m = static_cast<int>(rows_[s].size()) / (n + 1);
+      if (m == 0) continue;
+      const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
+          a(rows_[s].data(), m, n + 1);
+      Eigen::MatrixXd ata = Eigen::MatrixXd::Zero(n + 1, n + 1);
+      ata.selfadjointView<Eigen::Lower>().rankUpdate(a.transpose());
+      for (int i = 0; i < n; ++i) {
+        ev->g[k[i]] += ata(n, i);
+        for (int j = 0; j <= i; ++j) {
+          ev->H(k[i], k[j]) += ata(i, j);
+          if (i != j) ev->H(k[j], k[i]) += ata(i, j);
+        }
+      }
+    }
   }
 
   const ArticulatedBody& body_;
   const BodyObservation& obs_;
   const BodyFitOptions& o_;
   std::array<std::vector<int>, kBodySegmentCount> chain_;
+  // Per segment: the parameters its points depend on (the root's translation, then each
+  // segment of its chain, as ParameterIndex numbers them), and the weighted Jacobian rows of
+  // the residuals it carries, each params_[s].size() + 1 wide (sqrt(w) J, then sqrt(w) e).
+  std::array<std::vector<int>, kBodySegmentCount> params_;
+  mutable std::array<std::vector<double>, kBodySegmentCount> rows_;
+  // Per data point, its nearest capsule at the last evaluation (-1 before the first).
+  mutable std::vector<int> nearest_;
 };
 
 }  // namespace

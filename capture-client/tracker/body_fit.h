@@ -18,7 +18,11 @@
 //  - Damping: Levenberg-Marquardt's lambda times diag(H) plus damping times the data term's
 //    size on every parameter (a weak pull to the start pose for unobserved joints).
 // Jacobians are analytic: a rotation omega at joint j moves a point x it carries by
-// omega x (x - j) (see articulated_body.h).
+// omega x (x - j) (see articulated_body.h). A residual on segment s depends only on the root's
+// translation and the joints of s's chain to the root (at most 16 of the 31 parameters), so
+// the normal equations are summed per segment over those and scattered. Each point's nearest
+// capsule is searched from the one of the last iteration, passing capsules whose bounding
+// sphere lies farther than the best so far (the same capsule as a full search).
 
 #include <Eigen/Core>
 #include <array>

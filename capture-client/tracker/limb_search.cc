@@ -96,16 +96,28 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
   }
 
   std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> axes(local.size());
-  // Residual of a point to the limb as last posed by cost_of.
-  auto limb_residual = [&](const Eigen::Vector3d& p) {
+  // Each posed capsule's bounding sphere: its axis's midpoint, half its length plus its radius.
+  std::vector<std::pair<Eigen::Vector3d, double>> spheres(local.size());
+  // Residual of a point to the limb as last posed by cost_of, where it is below `below`;
+  // infinity where it is not (a capsule whose bounding sphere lies farther than `below` from
+  // the point cannot bring the residual under it, so its distance is not computed).
+  auto limb_residual = [&](const Eigen::Vector3d& p,
+                           double below = std::numeric_limits<double>::infinity()) {
     double e = std::numeric_limits<double>::infinity();
-    for (size_t k = 0; k < axes.size(); ++k)
+    for (size_t k = 0; k < axes.size(); ++k) {
+      const double r = spheres[k].second + below;
+      if ((p - spheres[k].first).squaredNorm() > r * r) continue;
       e = std::min(e, AxisDistance(axes[k].first, axes[k].second, p) - local[k].radius);
-    return e;
+    }
+    return e < below ? e : std::numeric_limits<double>::infinity();
   };
   // is_lost[j] for active[j]: beyond outlier_m of the held body and of the limb at `pose`;
   // taken: how many of them the last posing brought within outlier_m of the limb.
   std::vector<char> is_lost(active.size(), 0);
+  // below[j]: the residual under which the limb changes active[j]'s term: its cost (under
+  // min(rest, cap_m)) or, for a lost point, whether it is taken (within outlier_m).
+  std::vector<double> below(active.size());
+  for (size_t j = 0; j < active.size(); ++j) below[j] = std::min(rest[active[j]], options.cap_m);
   int taken = 0;
   auto cost_of = [&](const ArticulatedPose& candidate) {
     // Pose only this limb: upper rotation from the parent, lower by the hinge.
@@ -121,12 +133,14 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
     for (size_t k = 0; k < local.size(); ++k) {
       const Eigen::Isometry3d& t = local[k].lower ? tl : tu;
       axes[k] = {t * local[k].a, t * local[k].b};
+      spheres[k] = {0.5 * (axes[k].first + axes[k].second),
+                    0.5 * (axes[k].second - axes[k].first).norm() + local[k].radius};
     }
     double cost = fixed_cost;
     taken = 0;
     for (size_t j = 0; j < active.size(); ++j) {
       const int i = active[j];
-      const double e_limb = limb_residual(obs.points[i]);
+      const double e_limb = limb_residual(obs.points[i], below[j]);
       taken += is_lost[j] && e_limb <= fit.outlier_m;
       cost += std::min(HuberCost(std::min(rest[i], e_limb), delta), cap_cost);
     }
@@ -144,8 +158,10 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
   int n_lost = 0;
   for (size_t j = 0; j < active.size(); ++j) {
     const int i = active[j];
-    if (rest[i] > fit.outlier_m && limb_residual(obs.points[i]) > fit.outlier_m)
+    if (rest[i] > fit.outlier_m && limb_residual(obs.points[i]) > fit.outlier_m) {
       is_lost[j] = 1, ++n_lost;
+      below[j] = std::max(below[j], std::nextafter(fit.outlier_m, 1.0));
+    }
   }
   if (lost) *lost = n_lost;
   std::vector<ScoredHypothesis> scored;
