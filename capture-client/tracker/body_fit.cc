@@ -389,6 +389,7 @@ BodyFitResult FitBody(const ArticulatedBody& body, const ArticulatedPose& start,
   if (final_ev.inliers > 0) result.inlier_centroid = final_ev.inlier_sum / final_ev.inliers;
   const PinholeCamera& cam = obs.camera;
   const double spacing = obs.point_spacing_px;
+  double expected_in_image = 0;
   for (const BodyCapsule& c : body.capsules()) {
     const Eigen::Isometry3d& t = result.posed.sensor_from_segment[static_cast<int>(c.segment)];
     const Eigen::Vector3d a = t * c.a, b = t * c.b, mid = 0.5 * (a + b);
@@ -397,14 +398,13 @@ BodyFitResult FitBody(const ArticulatedBody& body, const ArticulatedPose& start,
     const Eigen::Vector3d ab = b - a;
     const double across = (ab - ab.dot(ray) * ray).norm();
     const double area = 2 * c.radius * across + std::numbers::pi * c.radius * c.radius;
-    result.expected_support[static_cast<int>(c.segment)] +=
-        ShareInImage(cam, a, b, c.radius) * area * cam.fx * cam.fy / (mid.z() * mid.z()) /
-        (spacing * spacing);
+    const double pixels = area * cam.fx * cam.fy / (mid.z() * mid.z()) / (spacing * spacing);
+    result.expected_support[static_cast<int>(c.segment)] += pixels;
+    expected_in_image += ShareInImage(cam, a, b, c.radius) * pixels;
   }
-  double support = 0, expected = 0;
-  for (int k = 0; k < kBodySegmentCount; ++k)
-    support += result.support[k], expected += result.expected_support[k];
-  result.coverage = expected > 0 ? std::min(1.0, support / expected) : 0.0;
+  double support = 0;
+  for (int k = 0; k < kBodySegmentCount; ++k) support += result.support[k];
+  result.coverage = expected_in_image > 0 ? std::min(1.0, support / expected_in_image) : 0.0;
   return result;
 }
 

@@ -83,12 +83,13 @@ struct BodyFitResult {
   double rms_m = 0;             // RMS of e over the points within outlier_m
   double silhouette_rms_m = 0;  // RMS of the silhouette/free-space residuals over the samples
   // Inlier points per segment, and the visible area the segment's capsules would cover
-  // (projected silhouette, grid pixels at the data's subsampling) for comparison; only the
-  // part within the image counts (a part beyond the image's edge is not seen, not missing).
+  // (projected silhouette, grid pixels at the data's subsampling) for comparison: a part
+  // beyond the image's edge, like one hidden by the body, has little support for its area.
   std::array<int, kBodySegmentCount> support{};
   std::array<double, kBodySegmentCount> expected_support{};
-  // Sum of support over sum of expected_support: the share of the model's silhouette the
-  // data covers (below 1 where the body hides its own parts).
+  // Sum of support over the part of the model's silhouette within the image: the share of
+  // what the model would show in the image that the data covers (below 1 where the body hides
+  // its own parts; a part beyond the image's edge is not seen, not missing).
   double coverage = 0;
   // Mean of the points within inlier_m (the start pose's root when there are none).
   Eigen::Vector3d inlier_centroid = Eigen::Vector3d::Zero();
