@@ -17,12 +17,13 @@ using Vec = Eigen::Matrix<double, kN, 1>;
 
 // The share of a capsule of radius r about the segment a-b (sensor frame) that projects inside
 // the camera's image: at kImageShareSamples points spread along the axis, the share of the
-// square of the capsule's projected width around the point's pixel that lies in the image;
-// 0 at points behind the sensor.
+// square of the capsule's projected width around the point's pixel that lies in the image
+// (for r = 0, whether the pixel does); 0 at points behind the sensor.
 constexpr int kImageShareSamples = 8;
 double ShareInImage(const PinholeCamera& camera, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                     double r) {
   const auto inside = [](double centre, double half, double size) {
+    if (half <= 0) return centre >= 0 && centre < size ? 1.0 : 0.0;
     return std::clamp((std::min(centre + half, size) - std::max(centre - half, 0.0)) / (2 * half),
                       0.0, 1.0);
   };

@@ -383,6 +383,25 @@ TEST(BodyFit, CoverageCountsOnlyTheModelInsideTheImage) {
   EXPECT_NEAR(half_out, in_view, 0.1);
 }
 
+TEST(BodyFit, CapsulesOfZeroRadiusGiveADefinedCoverage) {
+  // A degenerate shape (every radius 0: the capsules are their axes) covers no area; the
+  // fit's shares stay defined, never NaN.
+  BodyShape shape = BodyShape::FromHeight(1.75);
+  shape.head_radius = shape.torso_radius = shape.upper_arm_radius = shape.forearm_radius = 0;
+  shape.thigh_radius = shape.shin_radius = shape.foot_radius = 0;
+  const ArticulatedBody body(shape);
+  const ArticulatedBody solid(BodyShape::FromHeight(1.75));
+  BodyObservation obs = SurfaceObservation(solid, SomePose());
+  BodyFitOptions options;
+  options.silhouette_weight = 0;
+  const BodyFitResult fit = FitBody(body, SomePose(), obs, options);
+  EXPECT_TRUE(std::isfinite(fit.coverage));
+  EXPECT_GE(fit.coverage, 0);
+  EXPECT_LE(fit.coverage, 1);
+  EXPECT_TRUE(std::isfinite(fit.cost));
+  for (double e : fit.expected_support) EXPECT_TRUE(std::isfinite(e));
+}
+
 TEST(BodyFit, NoPointsKeepsTheStartPose) {
   const ArticulatedBody body(BodyShape::FromHeight(1.75));
   BodyObservation obs;
