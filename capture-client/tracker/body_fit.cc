@@ -106,7 +106,22 @@ struct PosedCapsule {
   int segment;
   Eigen::Vector3d a, b;
   double radius;
+  // Its bounding sphere: the axis's midpoint, half the axis's length plus the radius.
+  Eigen::Vector3d centre;
+  double bound;
 };
+
+// The body's capsules posed in the sensor frame.
+std::vector<PosedCapsule> PoseCapsules(const ArticulatedBody& body, const PosedBody3& posed) {
+  std::vector<PosedCapsule> caps;
+  for (const BodyCapsule& c : body.capsules()) {
+    const Eigen::Isometry3d& t = posed.sensor_from_segment[static_cast<int>(c.segment)];
+    const Eigen::Vector3d a = t * c.a, b = t * c.b;
+    caps.push_back({static_cast<int>(c.segment), a, b, c.radius, 0.5 * (a + b),
+                    0.5 * (b - a).norm() + c.radius});
+  }
+  return caps;
+}
 
 // Nearest point on segment a-b to p.
 Eigen::Vector3d NearestOnAxis(const PosedCapsule& c, const Eigen::Vector3d& p) {
@@ -144,15 +159,7 @@ class Problem {
   Evaluation Evaluate(const PosedBody3& posed, bool jacobian) const {
     Evaluation ev;
     for (std::vector<double>& r : rows_) r.clear();
-    std::vector<PosedCapsule> caps;
-    // Each capsule's bounding sphere: its axis's midpoint, half its length plus its radius.
-    std::vector<std::pair<Eigen::Vector3d, double>> spheres;
-    for (const BodyCapsule& c : body_.capsules()) {
-      const Eigen::Isometry3d& t = posed.sensor_from_segment[static_cast<int>(c.segment)];
-      caps.push_back({static_cast<int>(c.segment), t * c.a, t * c.b, c.radius});
-      spheres.emplace_back(0.5 * (caps.back().a + caps.back().b),
-                           0.5 * (caps.back().b - caps.back().a).norm() + c.radius);
-    }
+    const std::vector<PosedCapsule> caps = PoseCapsules(body_, posed);
     nearest_.resize(obs_.points.size(), -1);
     const double delta = o_.huber_m;
     for (size_t i = 0; i < obs_.points.size(); ++i) {
@@ -165,8 +172,8 @@ class Problem {
       if (bi >= 0) bc = NearestOnAxis(caps[bi], p), best = (p - bc).norm() - caps[bi].radius;
       for (int k = 0; k < static_cast<int>(caps.size()); ++k) {
         if (k == nearest_[i]) continue;
-        const double r = spheres[k].second + best;
-        if ((p - spheres[k].first).squaredNorm() > r * r) continue;
+        const double r = caps[k].bound + best;
+        if ((p - caps[k].centre).squaredNorm() > r * r) continue;
         const Eigen::Vector3d c = NearestOnAxis(caps[k], p);
         const double e = (p - c).norm() - caps[k].radius;
         if (e < best || (e == best && k < bi)) best = e, bi = k, bc = c;
@@ -329,11 +336,7 @@ BodyObservation MakeObservation(const PinholeCamera& camera, int grid_step_px,
 
 int KeepPointsNearBody(const ArticulatedBody& body, const PosedBody3& posed, double max_m,
                        BodyObservation* obs) {
-  std::vector<PosedCapsule> caps;
-  for (const BodyCapsule& c : body.capsules()) {
-    const Eigen::Isometry3d& t = posed.sensor_from_segment[static_cast<int>(c.segment)];
-    caps.push_back({static_cast<int>(c.segment), t * c.a, t * c.b, c.radius});
-  }
+  const std::vector<PosedCapsule> caps = PoseCapsules(body, posed);
   const size_t before = obs->points.size();
   std::erase_if(obs->points, [&](const Eigen::Vector3d& p) {
     for (const PosedCapsule& c : caps)
