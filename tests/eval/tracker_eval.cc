@@ -88,7 +88,8 @@ struct CaseSum {
 
 Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std::string& variant,
                                 int iterations, int subsample, const TrackerEvalOptions& o,
-                                std::map<std::string, CaseSum>* cases, JointErrorTable* joints) {
+                                std::map<std::string, CaseSum>* cases, JointErrorTable* joints,
+                                ConfidenceErrorTable* confidence) {
   capture::SkeletonTrackerOptions to = o.tracker;
   to.fit.iterations = iterations;
   to.subsample = subsample;
@@ -141,6 +142,7 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
       const Eigen::Vector3d up = world_from_sensor.linear().transpose() * world_up;
       if (const auto h = HeadingErrorDeg(*r.skeleton, truth, up)) headings.push_back(*h);
       joints->Add(*r.skeleton, truth);
+      confidence->Add(*r.skeleton, truth);
     }
     const auto hard = HardCases(
         truth, previous_truth ? &*previous_truth : nullptr, step / scene.frame_rate_hz(), camera,
@@ -188,13 +190,18 @@ Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& o) {
         for (size_t k = 0; k < o.subsample.size(); ++k) {
           std::map<std::string, CaseSum> cases;
           JointErrorTable joints;
-          auto row = RunOne(*scene, variant, o.iterations[i], o.subsample[k], o, &cases, &joints);
+          ConfidenceErrorTable confidence;
+          auto row = RunOne(*scene, variant, o.iterations[i], o.subsample[k], o, &cases, &joints,
+                            &confidence);
           if (!row.ok()) return row.error();
           run.rows.push_back(*row);
           const auto stats = joints.Stats();
           for (int j = 0; j < kJointCount; ++j)
             run.joints.push_back(
                 {name, variant, o.iterations[i], o.subsample[k], static_cast<Joint>(j), stats[j]});
+          const auto bins = confidence.Stats();
+          for (int b = 0; b < kConfidenceBinCount; ++b)
+            run.confidence.push_back({name, variant, o.iterations[i], o.subsample[k], b, bins[b]});
           for (const char* name_case : kCases) {
             const auto it = cases.find(name_case);
             if (it == cases.end()) continue;
@@ -265,6 +272,20 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
         .Add("bias_z_cm", j.stats.bias_cm.z())
         .Add("bias_cm", j.stats.bias_norm_cm)
         .Add("spread_cm", j.stats.spread_cm);
+    report.rows.push_back(std::move(row));
+  }
+  for (const TrackerConfidenceRow& c : run.confidence) {
+    proto::ReportRow row;
+    row.table = "confidence";
+    row.Add("scenario", c.scenario)
+        .Add("variant", c.variant)
+        .Add("iterations", static_cast<long long>(c.iterations))
+        .Add("subsample", static_cast<long long>(c.subsample))
+        .Add("confidence", std::string(ConfidenceErrorTable::BinName(c.bin)))
+        .Add("n", static_cast<long long>(c.stats.n))
+        .Add("share", c.stats.share)
+        .Add("mean_cm", c.stats.mean_cm)
+        .Add("gross_share", c.stats.gross_share);
     report.rows.push_back(std::move(row));
   }
   return report;

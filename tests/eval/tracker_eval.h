@@ -42,7 +42,9 @@
 // ground-truth body frame of each frame (x the subject's left to its right, y forward, z up
 // along the spine), its norm bias_cm (a constant offset, such as a rig placing a joint
 // elsewhere than the tracker's model) and spread_cm (RMS of the error less that mean: the
-// tracking error proper).
+// tracking error proper). A fourth, "confidence", breaks every row's joint estimates down by
+// the confidence the tracker reported for them (confidence_error_table.h): their share, mean
+// error and share more than 10 cm off per confidence bin.
 // Bodies: the procedural scenarios play on the procedural body and bvh: scenarios on
 // --body (default ../shared/data/models/CesiumMan.glb); --body FILE.glb plays every scenario
 // on that skinned body (the procedural scenarios retargeted), --body procedural every
@@ -61,6 +63,7 @@
 #include "common/cli/command_line.h"
 #include "common/error/expected.h"
 #include "proto/report/report_table.h"
+#include "tests/eval/confidence_error_table.h"
 #include "tests/eval/joint_error_table.h"
 
 namespace reenact::eval {
@@ -103,10 +106,18 @@ struct TrackerJointRow {
   JointErrorStats stats;
 };
 
+struct TrackerConfidenceRow {
+  std::string scenario, variant;
+  int iterations = 0, subsample = 0;
+  int bin = 0;  // ConfidenceErrorTable's bin
+  ConfidenceBinStats stats;
+};
+
 struct TrackerEvalRun {
   std::vector<TrackerEvalRow> rows;
   std::vector<TrackerCaseRow> cases;
-  std::vector<TrackerJointRow> joints;  // kJointCount per row, in Joint order
+  std::vector<TrackerJointRow> joints;           // kJointCount per row, in Joint order
+  std::vector<TrackerConfidenceRow> confidence;  // kConfidenceBinCount per row, in bin order
 };
 
 // Errors: "not_found" for an unknown scenario; "usage" for an unknown variant; the scene's
@@ -118,7 +129,8 @@ Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& options);
 // ms_per_frame, cpu_ms_per_frame) and the table "cases" (scenario, variant, iterations,
 // subsample, case, n, tracked_rate, mpjpe_cm) and the table "joints" (scenario, variant,
 // iterations, subsample, joint, n, mean_cm, bias_x_cm, bias_y_cm, bias_z_cm, bias_cm,
-// spread_cm).
+// spread_cm) and the table "confidence" (scenario, variant, iterations, subsample, confidence,
+// n, share, mean_cm, gross_share).
 proto::Report TrackerReport(const TrackerEvalRun& run);
 
 struct TrackerCommand {

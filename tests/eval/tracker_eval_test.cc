@@ -152,6 +152,27 @@ TEST(TrackerEval, ShortRunTracksEveryFrameAndWritesTheReport) {
     EXPECT_LE(j.stats.bias_norm_cm, j.stats.mean_cm + 1e-9);
   }
   EXPECT_NE(text.str().find("\"joint\": \"l_hand\""), std::string::npos);
+  // The confidence table: every joint estimate of a row in one of its bins. The tracker
+  // reports every joint of a tracked frame (min_confidence > 0), so the bins hold 16 per
+  // frame, and their mean errors, weighted by n, give the row's MPJPE (both the mean over all
+  // joint estimates).
+  ASSERT_EQ(run->confidence.size(), 2u * kConfidenceBinCount);
+  for (size_t r = 0; r < run->rows.size(); ++r) {
+    int n = 0;
+    double share = 0, error_cm = 0;
+    for (int b = 0; b < kConfidenceBinCount; ++b) {
+      const TrackerConfidenceRow& c = run->confidence[r * kConfidenceBinCount + b];
+      EXPECT_EQ(c.variant, run->rows[r].variant);
+      EXPECT_EQ(c.bin, b);
+      n += c.stats.n;
+      share += c.stats.share;
+      error_cm += c.stats.n * c.stats.mean_cm;
+    }
+    EXPECT_EQ(n, run->rows[r].tracked * kJointCount);
+    EXPECT_NEAR(share, 1.0, 1e-9);
+    EXPECT_NEAR(error_cm / n, run->rows[r].mpjpe_cm, 1e-9);
+  }
+  EXPECT_NE(text.str().find("\"confidence\": \"0.75-1\""), std::string::npos);
 }
 
 TEST(TrackerEval, TurningFramesAreTheTurnsConstruction) {
