@@ -153,7 +153,6 @@ class Problem {
     int inliers = 0, outliers = 0, used = 0, samples = 0;
     Eigen::Vector3d inlier_sum = Eigen::Vector3d::Zero();
     double data_sq = 0, sil_sq = 0;
-    std::array<int, kBodySegmentCount> support{};
   };
 
   Evaluation Evaluate(const PosedBody3& posed, bool jacobian) const {
@@ -185,7 +184,7 @@ class Problem {
       }
       ++ev.used;
       const double ae = std::abs(best);
-      if (ae <= o_.inlier_m) ++ev.inliers, ++ev.support[caps[bi].segment], ev.inlier_sum += p;
+      if (ae <= o_.inlier_m) ++ev.inliers, ev.inlier_sum += p;
       ev.data_sq += best * best;
       ev.cost += HuberCost(best, delta);
       if (!jacobian) continue;
@@ -346,6 +345,39 @@ int KeepPointsNearBody(const ArticulatedBody& body, const PosedBody3& posed, dou
   return static_cast<int>(before - obs->points.size());
 }
 
+SegmentSupport SupportAt(const ArticulatedBody& body, const PosedBody3& posed,
+                         const BodyObservation& obs, double inlier_m) {
+  std::array<int, kBodySegmentCount> partner;
+  partner.fill(-1);
+  for (int l = 0; l < kLimbCount; ++l) {
+    const int upper = static_cast<int>(LimbUpper(static_cast<Limb>(l)));
+    const int lower = static_cast<int>(LimbLower(static_cast<Limb>(l)));
+    partner[upper] = lower, partner[lower] = upper;
+  }
+  const std::vector<PosedCapsule> caps = PoseCapsules(body, posed);
+  SegmentSupport out;
+  for (const Eigen::Vector3d& p : obs.points) {
+    int owner = -1;
+    double best = std::numeric_limits<double>::infinity();
+    std::array<bool, kBodySegmentCount> within{};
+    for (const PosedCapsule& c : caps) {
+      const double r = c.bound + std::max(inlier_m, best);
+      if ((p - c.centre).squaredNorm() > r * r) continue;
+      const double e = (p - NearestOnAxis(c, p)).norm() - c.radius;
+      if (std::abs(e) <= inlier_m) within[c.segment] = true;
+      if (e < best) best = e, owner = c.segment;
+    }
+    if (owner < 0 || std::abs(best) > inlier_m) continue;
+    ++out.support[owner];
+    bool exclusive = true;
+    if (partner[owner] >= 0)
+      for (int k = 0; k < kBodySegmentCount; ++k)
+        if (within[k] && k != owner && k != partner[owner]) exclusive = false;
+    out.exclusive[owner] += exclusive;
+  }
+  return out;
+}
+
 BodyFitResult FitBody(const ArticulatedBody& body, const ArticulatedPose& start,
                       const BodyObservation& obs, const BodyFitOptions& options,
                       const JointLimits& limits) {
@@ -389,7 +421,9 @@ BodyFitResult FitBody(const ArticulatedBody& body, const ArticulatedPose& start,
   result.rms_m = final_ev.used > 0 ? std::sqrt(final_ev.data_sq / final_ev.used) : 0;
   result.silhouette_rms_m =
       final_ev.samples > 0 ? std::sqrt(final_ev.sil_sq / final_ev.samples) : 0;
-  result.support = final_ev.support;
+  const SegmentSupport support_at = SupportAt(body, result.posed, obs, options.inlier_m);
+  result.support = support_at.support;
+  result.exclusive_support = support_at.exclusive;
   if (final_ev.inliers > 0) result.inlier_centroid = final_ev.inlier_sum / final_ev.inliers;
   const PinholeCamera& cam = obs.camera;
   const double spacing = obs.point_spacing_px;

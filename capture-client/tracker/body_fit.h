@@ -82,10 +82,12 @@ struct BodyFitResult {
   double outlier_share = 0;     // points beyond outlier_m of every capsule (unexplained)
   double rms_m = 0;             // RMS of e over the points within outlier_m
   double silhouette_rms_m = 0;  // RMS of the silhouette/free-space residuals over the samples
-  // Inlier points per segment, and the visible area the segment's capsules would cover
-  // (projected silhouette, grid pixels at the data's subsampling) for comparison: a part
-  // beyond the image's edge, like one hidden by the body, has little support for its area.
+  // Inlier points per segment, all and exclusive (SegmentSupport below), and the visible area the
+  // segment's capsules would cover (projected silhouette, grid pixels at the data's subsampling)
+  // for comparison: a part beyond the image's edge, like one hidden by the body, has little support
+  // for its area.
   std::array<int, kBodySegmentCount> support{};
+  std::array<int, kBodySegmentCount> exclusive_support{};
   std::array<double, kBodySegmentCount> expected_support{};
   // Sum of support over the part of the model's silhouette within the image: the share of
   // what the model would show in the image that the data covers (below 1 where the body hides
@@ -94,6 +96,20 @@ struct BodyFitResult {
   // Mean of the points within inlier_m (the start pose's root when there are none).
   Eigen::Vector3d inlier_centroid = Eigen::Vector3d::Zero();
 };
+
+// The data points each segment explains at a pose. support: the points whose nearest capsule
+// (the smallest e, the first of equals) is one of the segment's, with |e| <= inlier_m.
+// exclusive: of those, the points that no capsule of another segment lies within inlier_m of
+// as well, the limb's other segment excepted (upper arm and forearm, thigh and shin meet at
+// the elbow and knee); for the trunk's segments (pelvis, lower spine, chest, head) every
+// supporting point counts. A limb lying on the trunk or on another limb takes their points as
+// support, but not exclusively: the data do not tell it from the part it lies on.
+struct SegmentSupport {
+  std::array<int, kBodySegmentCount> support{};
+  std::array<int, kBodySegmentCount> exclusive{};
+};
+SegmentSupport SupportAt(const ArticulatedBody& body, const PosedBody3& posed,
+                         const BodyObservation& observation, double inlier_m);
 
 // The silhouette/free-space residual (see above) at an axis point q (sensor frame) and its
 // gradient with respect to q; false when q projects outside the image (or lies behind the

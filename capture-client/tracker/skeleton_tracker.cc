@@ -116,9 +116,10 @@ Skeleton SkeletonTracker::WithConfidence(const BodyFitResult& fit, bool good) co
   Skeleton s = fit.posed.skeleton;
   std::array<double, kBodySegmentCount> seg{};
   for (int k = 0; k < kBodySegmentCount; ++k)
-    seg[k] = fit.expected_support[k] > 0
-                 ? fit.support[k] / (fit.expected_support[k] * options_.full_support_ratio)
-                 : 0.0;
+    seg[k] =
+        fit.expected_support[k] > 0
+            ? fit.exclusive_support[k] / (fit.expected_support[k] * options_.full_support_ratio)
+            : 0.0;
   for (int j = 0; j < kJointCount; ++j) {
     const double c = std::max(seg[static_cast<int>(kJointSegments[j][0])],
                               seg[static_cast<int>(kJointSegments[j][1])]);

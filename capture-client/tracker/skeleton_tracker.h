@@ -38,8 +38,10 @@
 //    alike; the best fit of all is taken when it is good. The start without the
 //    calibration pose tries the upright starts only (on the bvh: walk, seen from the side at
 //    4 m, the extremity starts won with poses that tracked worse).
-// Per-joint confidence: each segment's inlier points over the points its capsules would show
-// if unoccluded (BodyFitResult::support / expected_support), divided by full_support_ratio
+// Per-joint confidence: each segment's inlier points that no other part explains as well
+// over the points its capsules would show if unoccluded (BodyFitResult::exclusive_support /
+// expected_support; body_fit.h's SegmentSupport: an arm lying on the trunk or on the other
+// arm is not confirmed by the points it shares with them), divided by full_support_ratio
 // and clamped to [min_confidence, 1]; a joint takes the best of its adjacent segments.
 // Output skeletons are in the sensor frame (OpenCV axes, metres). Not thread-safe: one caller
 // at a time (the turned starts run on threads of the tracker's own within Track).
