@@ -222,16 +222,28 @@ Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& o) {
   return run;
 }
 
+namespace {
+
+// A row of `table` ("" the main one) opening with its run's setting.
+proto::ReportRow SettingRow(std::string table, const std::string& scenario,
+                            const std::string& variant, int iterations, int subsample) {
+  proto::ReportRow row;
+  row.table = std::move(table);
+  row.Add("scenario", scenario)
+      .Add("variant", variant)
+      .Add("iterations", static_cast<long long>(iterations))
+      .Add("subsample", static_cast<long long>(subsample));
+  return row;
+}
+
+}  // namespace
+
 proto::Report TrackerReport(const TrackerEvalRun& run) {
   proto::Report report;
   report.command = "tracker";
   for (const TrackerEvalRow& r : run.rows) {
-    proto::ReportRow row;
-    row.Add("scenario", r.scenario)
-        .Add("variant", r.variant)
-        .Add("iterations", static_cast<long long>(r.iterations))
-        .Add("subsample", static_cast<long long>(r.subsample))
-        .Add("n", static_cast<long long>(r.frames))
+    proto::ReportRow row = SettingRow("", r.scenario, r.variant, r.iterations, r.subsample);
+    row.Add("n", static_cast<long long>(r.frames))
         .Add("tracked_rate", r.tracked_rate)
         .Add("mpjpe_cm", r.mpjpe_cm)
         .Add("p90_cm", r.p90_cm)
@@ -245,26 +257,16 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
     report.rows.push_back(std::move(row));
   }
   for (const TrackerCaseRow& c : run.cases) {
-    proto::ReportRow row;
-    row.table = "cases";
-    row.Add("scenario", c.scenario)
-        .Add("variant", c.variant)
-        .Add("iterations", static_cast<long long>(c.iterations))
-        .Add("subsample", static_cast<long long>(c.subsample))
-        .Add("case", c.hard_case)
+    proto::ReportRow row = SettingRow("cases", c.scenario, c.variant, c.iterations, c.subsample);
+    row.Add("case", c.hard_case)
         .Add("n", static_cast<long long>(c.frames))
         .Add("tracked_rate", c.tracked_rate)
         .Add("mpjpe_cm", c.mpjpe_cm);
     report.rows.push_back(std::move(row));
   }
   for (const TrackerJointRow& j : run.joints) {
-    proto::ReportRow row;
-    row.table = "joints";
-    row.Add("scenario", j.scenario)
-        .Add("variant", j.variant)
-        .Add("iterations", static_cast<long long>(j.iterations))
-        .Add("subsample", static_cast<long long>(j.subsample))
-        .Add("joint", std::string(JointName(j.joint)))
+    proto::ReportRow row = SettingRow("joints", j.scenario, j.variant, j.iterations, j.subsample);
+    row.Add("joint", std::string(JointName(j.joint)))
         .Add("n", static_cast<long long>(j.stats.frames))
         .Add("mean_cm", j.stats.mean_cm)
         .Add("bias_x_cm", j.stats.bias_cm.x())
@@ -275,13 +277,9 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
     report.rows.push_back(std::move(row));
   }
   for (const TrackerConfidenceRow& c : run.confidence) {
-    proto::ReportRow row;
-    row.table = "confidence";
-    row.Add("scenario", c.scenario)
-        .Add("variant", c.variant)
-        .Add("iterations", static_cast<long long>(c.iterations))
-        .Add("subsample", static_cast<long long>(c.subsample))
-        .Add("confidence", std::string(ConfidenceErrorTable::BinName(c.bin)))
+    proto::ReportRow row =
+        SettingRow("confidence", c.scenario, c.variant, c.iterations, c.subsample);
+    row.Add("confidence", std::string(ConfidenceErrorTable::BinName(c.bin)))
         .Add("n", static_cast<long long>(c.stats.n))
         .Add("share", c.stats.share)
         .Add("mean_cm", c.stats.mean_cm)
