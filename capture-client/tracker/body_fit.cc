@@ -153,6 +153,7 @@ class Problem {
     int inliers = 0, outliers = 0, used = 0, samples = 0;
     Eigen::Vector3d inlier_sum = Eigen::Vector3d::Zero();
     double data_sq = 0, sil_sq = 0;
+    std::array<int, kBodySegmentCount> support{};
   };
 
   Evaluation Evaluate(const PosedBody3& posed, bool jacobian) const {
@@ -184,7 +185,7 @@ class Problem {
       }
       ++ev.used;
       const double ae = std::abs(best);
-      if (ae <= o_.inlier_m) ++ev.inliers, ev.inlier_sum += p;
+      if (ae <= o_.inlier_m) ++ev.inliers, ++ev.support[caps[bi].segment], ev.inlier_sum += p;
       ev.data_sq += best * best;
       ev.cost += HuberCost(best, delta);
       if (!jacobian) continue;
@@ -421,9 +422,7 @@ BodyFitResult FitBody(const ArticulatedBody& body, const ArticulatedPose& start,
   result.rms_m = final_ev.used > 0 ? std::sqrt(final_ev.data_sq / final_ev.used) : 0;
   result.silhouette_rms_m =
       final_ev.samples > 0 ? std::sqrt(final_ev.sil_sq / final_ev.samples) : 0;
-  const SegmentSupport support_at = SupportAt(body, result.posed, obs, options.inlier_m);
-  result.support = support_at.support;
-  result.exclusive_support = support_at.exclusive;
+  result.support = final_ev.support;
   if (final_ev.inliers > 0) result.inlier_centroid = final_ev.inlier_sum / final_ev.inliers;
   const PinholeCamera& cam = obs.camera;
   const double spacing = obs.point_spacing_px;

@@ -82,12 +82,11 @@ struct BodyFitResult {
   double outlier_share = 0;     // points beyond outlier_m of every capsule (unexplained)
   double rms_m = 0;             // RMS of e over the points within outlier_m
   double silhouette_rms_m = 0;  // RMS of the silhouette/free-space residuals over the samples
-  // Inlier points per segment, all and exclusive (SegmentSupport below), and the visible area the
-  // segment's capsules would cover (projected silhouette, grid pixels at the data's subsampling)
-  // for comparison: a part beyond the image's edge, like one hidden by the body, has little support
-  // for its area.
+  // Inlier points per segment (SegmentSupport::support below), and the visible area the
+  // segment's capsules would cover (projected silhouette, grid pixels at the data's
+  // subsampling) for comparison: a part beyond the image's edge, like one hidden by the body,
+  // has little support for its area.
   std::array<int, kBodySegmentCount> support{};
-  std::array<int, kBodySegmentCount> exclusive_support{};
   std::array<double, kBodySegmentCount> expected_support{};
   // Sum of support over the part of the model's silhouette within the image: the share of
   // what the model would show in the image that the data covers (below 1 where the body hides

@@ -112,14 +112,15 @@ bool SkeletonTracker::Good(const BodyFitResult& fit) const {
          fit.coverage >= options_.min_coverage;
 }
 
-Skeleton SkeletonTracker::WithConfidence(const BodyFitResult& fit, bool good) const {
+Skeleton SkeletonTracker::WithConfidence(const BodyFitResult& fit, const BodyObservation& obs,
+                                         double inlier_m, bool good) const {
   Skeleton s = fit.posed.skeleton;
+  const SegmentSupport support = SupportAt(*body_, fit.posed, obs, inlier_m);
   std::array<double, kBodySegmentCount> seg{};
   for (int k = 0; k < kBodySegmentCount; ++k)
-    seg[k] =
-        fit.expected_support[k] > 0
-            ? fit.exclusive_support[k] / (fit.expected_support[k] * options_.full_support_ratio)
-            : 0.0;
+    seg[k] = fit.expected_support[k] > 0
+                 ? support.exclusive[k] / (fit.expected_support[k] * options_.full_support_ratio)
+                 : 0.0;
   for (int j = 0; j < kJointCount; ++j) {
     const double c = std::max(seg[static_cast<int>(kJointSegments[j][0])],
                               seg[static_cast<int>(kJointSegments[j][1])]);
@@ -339,6 +340,14 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
   }
 
   if (state_ == TrackState::kWaitingForCalibration) {
+    // The frame's observation as CalibrateBody makes it, built only when a fit is taken.
+    std::optional<BodyObservation> observation;
+    const auto obs = [&]() -> const BodyObservation& {
+      if (!observation)
+        observation = MakeObservation(camera_, blob.grid_step_px, blob.mask, blob.depth_m,
+                                      blob.points, blob.pixels, options_.subsample);
+      return *observation;
+    };
     BodyCalibration c = CalibrateBody(blob, camera_, options_.subsample, options_.calibration);
     if (c.status != CalibrationStatus::kOk || !Good(c.fit)) {
       const int after = options_.start_without_calibration_after;
@@ -353,10 +362,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
       }
       body_.emplace(p.shape);
       has_previous_ = false;
-      const BodyObservation obs =
-          MakeObservation(camera_, blob.grid_step_px, blob.mask, blob.depth_m, blob.points,
-                          blob.pixels, options_.subsample);
-      auto r = Recover(blob, obs, &out.from_extremities);
+      auto r = Recover(blob, obs(), &out.from_extremities);
       if (!r) {
         body_.reset();
         out.state = state_;
@@ -376,7 +382,9 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
     out.inlier_share = c.fit.inlier_share;
     out.outlier_share = c.fit.outlier_share;
     out.points = c.fit.points;
-    out.skeleton = WithConfidence(c.fit, true);
+    out.skeleton = WithConfidence(
+        c.fit, obs(),
+        c.from_calibration_pose ? options_.calibration.fit.inlier_m : options_.fit.inlier_m, true);
     calibration_ = std::move(c);
     out.state = state_;
     return out;
@@ -399,7 +407,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
     out.recovered = out.good_fit = true;
     out.inlier_share = r->inlier_share;
     out.outlier_share = r->outlier_share;
-    out.skeleton = WithConfidence(*r, true);
+    out.skeleton = WithConfidence(*r, obs, options_.fit.inlier_m, true);
     out.state = state_;
     return out;
   }
@@ -442,7 +450,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
   pose_ = fit.pose;
   has_previous_ = true;
   if (out.good_fit) CollectMotionFrame(fit, obs);
-  out.skeleton = WithConfidence(fit, out.good_fit);
+  out.skeleton = WithConfidence(fit, obs, options_.fit.inlier_m, out.good_fit);
   out.state = state_;
   return out;
 }

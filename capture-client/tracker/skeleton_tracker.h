@@ -39,10 +39,11 @@
 //    calibration pose tries the upright starts only (on the bvh: walk, seen from the side at
 //    4 m, the extremity starts won with poses that tracked worse).
 // Per-joint confidence: each segment's inlier points that no other part explains as well
-// over the points its capsules would show if unoccluded (BodyFitResult::exclusive_support /
-// expected_support; body_fit.h's SegmentSupport: an arm lying on the trunk or on the other
-// arm is not confirmed by the points it shares with them), divided by full_support_ratio
-// and clamped to [min_confidence, 1]; a joint takes the best of its adjacent segments.
+// over the points its capsules would show if unoccluded (SegmentSupport::exclusive of the
+// reported fit, body_fit.h, over BodyFitResult::expected_support: an arm lying on the trunk
+// or on the other arm is not confirmed by the points it shares with them), divided by
+// full_support_ratio and clamped to [min_confidence, 1]; a joint takes the best of its
+// adjacent segments.
 // Output skeletons are in the sensor frame (OpenCV axes, metres). Not thread-safe: one caller
 // at a time (the turned starts run on threads of the tracker's own within Track).
 
@@ -195,7 +196,9 @@ class SkeletonTracker {
   void Reset();
 
  private:
-  Skeleton WithConfidence(const BodyFitResult& fit, bool good) const;
+  // The fit's skeleton with per-joint confidence (see above); obs and inlier_m: the fit's.
+  Skeleton WithConfidence(const BodyFitResult& fit, const BodyObservation& obs, double inlier_m,
+                          bool good) const;
   bool Good(const BodyFitResult& fit) const;
   BodyFitResult Refine(BodyFitResult fit, const BodyObservation& obs) const;
   BodyFitResult Uncross(BodyFitResult fit, const BodyObservation& obs) const;
