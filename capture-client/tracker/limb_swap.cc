@@ -1,6 +1,9 @@
 #include "capture-client/tracker/limb_swap.h"
 
+#include <numbers>
+
 #include "capture-client/tracker/extremity_pose.h"
+#include "capture-client/tracker/heading.h"
 
 namespace reenact::capture {
 
@@ -19,6 +22,17 @@ ArticulatedPose SwappedLimbs(const ArticulatedBody& body, const ArticulatedPose&
   const Eigen::Vector3d right_end = LimbEnd(body, posed, pair.right);
   const ArticulatedPose reached = ReachLimb(body, pose, pair.left, right_end, limits);
   return ReachLimb(body, reached, pair.right, left_end, limits);
+}
+
+ArticulatedPose TurnedAround(const ArticulatedBody& body, const ArticulatedPose& pose,
+                             const Eigen::Vector3d& up, const JointLimits& limits) {
+  const PosedBody3 posed = body.Pose(pose);
+  ArticulatedPose turned = TurnedBy(pose, up, std::numbers::pi);
+  for (const LimbPair pair : {kArms, kLegs}) {
+    turned = ReachLimb(body, turned, pair.left, LimbEnd(body, posed, pair.right), limits);
+    turned = ReachLimb(body, turned, pair.right, LimbEnd(body, posed, pair.left), limits);
+  }
+  return turned;
 }
 
 }  // namespace reenact::capture

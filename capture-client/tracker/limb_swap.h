@@ -35,4 +35,11 @@ bool LimbsCrossed(const ArticulatedBody& body, const PosedBody3& posed, LimbPair
 ArticulatedPose SwappedLimbs(const ArticulatedBody& body, const ArticulatedPose& pose,
                              LimbPair pair, const JointLimits& limits = {});
 
+// Front and back: `pose` turned half a turn about `up` (unit, the floor's normal; about the
+// waist joint), each limb then reaching where the opposite limb of `pose` ended, so that the
+// turned body lies on the same data with its left and right exchanged: the other answer to a
+// depth silhouette's front/back ambiguity. A zero up leaves the pose unturned (limbs swapped).
+ArticulatedPose TurnedAround(const ArticulatedBody& body, const ArticulatedPose& pose,
+                             const Eigen::Vector3d& up, const JointLimits& limits = {});
+
 }  // namespace reenact::capture

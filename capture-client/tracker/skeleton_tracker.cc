@@ -62,6 +62,10 @@ void SkeletonTrackerOptions::Check() const {
   REENACT_CHECK(flip_cost_tolerance >= 1, "flip_cost_tolerance must be >= 1");
   REENACT_CHECK(turn_start_deg >= 0 && turn_start_deg < 90, "turn_start_deg must be in [0, 90)");
   REENACT_CHECK(heading_check_cooldown_frames >= 0, "heading_check_cooldown_frames must be >= 0");
+  REENACT_CHECK(front_check_frames >= 0 && front_check_every >= 1 && front_check_gain >= 0 &&
+                    front_check_gain < 1,
+                "front_check_frames must be >= 0, front_check_every >= 1, front_check_gain in "
+                "[0, 1)");
   REENACT_CHECK(
       motion_calibration_frames >= 0 && motion_frame_spacing >= 1 && motion_min_leg_spread_rad >= 0,
       "motion_calibration_frames >= 0, motion_frame_spacing >= 1, "
@@ -100,6 +104,7 @@ void SkeletonTracker::Reset() {
   uncalibrated_frames_ = 0;
   travel_.Clear();
   heading_cooldown_ = 0;
+  frames_since_silhouette_start_ = -1;
   recheck_limb_ = 0;
   motion_obs_.clear();
   motion_poses_.clear();
@@ -209,7 +214,10 @@ std::optional<BodyFitResult> SkeletonTracker::Recover(const PersonBlob& blob,
   fit.iterations = options_.recovery_iterations;
   if (auto start = CalibrationStartPose(*body_, blob, test)) {
     BodyFitResult r = FitBody(*body_, *start, obs, fit, options_.limits);
-    if (Good(r)) return r;
+    if (Good(r)) {
+      frames_since_silhouette_start_ = -1;
+      return r;
+    }
   }
   if (!options_.recover_from_silhouette || !blob.floor_in_sensor) return std::nullopt;
   // From the silhouette: upright hypotheses at the blob.
@@ -223,7 +231,10 @@ std::optional<BodyFitResult> SkeletonTracker::Recover(const PersonBlob& blob,
     extremities = FindGeodesicExtremities(blob.points, blob.floor_in_sensor, options_.extremities);
   std::optional<BodyFitResult> best =
       BestHeading(blob, obs, headings, extremities ? &*extremities : nullptr, from_extremities);
-  if (best && Good(*best)) return best;
+  if (best && Good(*best)) {
+    frames_since_silhouette_start_ = 0;
+    return best;
+  }
   if (from_extremities) *from_extremities = false;
   return std::nullopt;
 }
@@ -259,6 +270,22 @@ std::optional<BodyFitResult> SkeletonTracker::BestHeading(
     }
   }
   return best;
+}
+
+BodyFitResult SkeletonTracker::CheckFront(BodyFitResult fit, const PersonBlob& blob,
+                                          const BodyObservation& obs) {
+  if (frames_since_silhouette_start_ < 0) return fit;
+  const int k = ++frames_since_silhouette_start_;
+  if (k > options_.front_check_frames) {
+    frames_since_silhouette_start_ = -1;
+    return fit;
+  }
+  if (k % options_.front_check_every != 0 || !blob.floor_in_sensor || !Good(fit)) return fit;
+  const ArticulatedPose start =
+      TurnedAround(*body_, fit.pose, blob.floor_in_sensor->normal, options_.limits);
+  BodyFitResult around = Refine(FitBody(*body_, start, obs, options_.fit, options_.limits), obs);
+  if (Good(around) && around.cost <= (1 - options_.front_check_gain) * fit.cost) return around;
+  return fit;
 }
 
 BodyFitResult SkeletonTracker::CheckTravelHeading(
@@ -385,6 +412,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
     out.skeleton = WithConfidence(
         c.fit, obs(),
         c.from_calibration_pose ? options_.calibration.fit.inlier_m : options_.fit.inlier_m, true);
+    if (c.from_calibration_pose) frames_since_silhouette_start_ = -1;
     calibration_ = std::move(c);
     out.state = state_;
     return out;
@@ -434,6 +462,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
     fit = RecheckLimb(std::move(fit), obs, static_cast<Limb>(recheck_limb_));
     recheck_limb_ = (recheck_limb_ + 1) % kLimbCount;
   }
+  fit = CheckFront(std::move(fit), blob, obs);
   if (Good(fit)) fit = CheckTravelHeading(std::move(fit), blob, obs, world_from_sensor);
   out.inlier_share = fit.inlier_share;
   out.outlier_share = fit.outlier_share;

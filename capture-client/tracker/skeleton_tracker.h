@@ -23,6 +23,8 @@
 //    image (BodyFitResult::coverage: a model that slid off the person covers little; 0.4-0.65 is
 //    usual, the body hiding its own parts; a subject partly beyond the image's edge keeps it) and
 //    at least good_inlier_share of the points lie within inlier_m of the model's surface.
+//    For a while after a start whose heading came from the silhouette, the fit is also tried
+//    turned around (front_check_*, below): front and back look alike to a standing body.
 //    Unexplained points alone (an object touching the person) do not make a fit bad. Bone lengths
 //    are fixed by construction and joint limits are enforced on every step, so neither can be
 //    violated; a failed detection or a bad fit counts as a bad frame, and lost_after_frames bad
@@ -145,6 +147,19 @@ struct SkeletonTrackerOptions {
   double travel_flip_cos = -0.3;
   double flip_cost_tolerance = 1.3;
   int heading_check_cooldown_frames = 10;
+  // Front from the fit, while it is uncertain: for front_check_frames (>= 0; 0 = off) tracked
+  // frames after a start whose heading came from the silhouette (a start without the
+  // calibration pose, a recovery from the silhouette), every front_check_every-th (>= 1) frame
+  // is also fitted from the body turned around on the same data (limb_swap.h's TurnedAround),
+  // and that fit kept when it is good and costs at most (1 - front_check_gain) ([0, 1)) times
+  // the frame's. The start chose its heading standing still, where front and back fit nearly
+  // alike (on CesiumMan the back often better); once the subject moves, the knees and elbows,
+  // which bend one way only, tell them apart. Later the track's own continuity is the better
+  // guide: checked throughout, a turn made in a fast spin was taken the wrong way round
+  // (docs/measurements.md).
+  int front_check_frames = 30;
+  int front_check_every = 5;
+  double front_check_gain = 0.1;
   // On-the-fly calibration of a body started without the calibration pose: the segment
   // lengths of shape_fit.h (its free lengths, priors and the standing height) fitted over
   // motion_calibration_frames (>= 0; 0 = off) tracked frames with good fits, at least
@@ -216,6 +231,8 @@ class SkeletonTracker {
                                            const std::vector<Eigen::Vector3d>& headings,
                                            const GeodesicExtremities* extremities = nullptr,
                                            bool* from_extremities = nullptr) const;
+  // The front check of the options (front_check_*); returns the fit to keep.
+  BodyFitResult CheckFront(BodyFitResult fit, const PersonBlob& blob, const BodyObservation& obs);
   // The travel check of the options (front = direction of travel); returns the fit to keep.
   BodyFitResult CheckTravelHeading(BodyFitResult fit, const PersonBlob& blob,
                                    const BodyObservation& obs,
@@ -241,6 +258,8 @@ class SkeletonTracker {
   int since_motion_frame_ = 0;
   void CollectMotionFrame(const BodyFitResult& fit, const BodyObservation& obs);
   int heading_cooldown_ = 0;
+  // Tracked frames since a start whose heading came from the silhouette (front_check_*).
+  int frames_since_silhouette_start_ = -1;  // -1: none
   int recheck_limb_ = 0;  // the limb to re-check next (Limb)
 };
 

@@ -141,5 +141,42 @@ TEST(LimbSwap, ArmsCrossedByTheSubjectStayCrossed) {
   EXPECT_GT(swapped.cost, at_truth.cost);
 }
 
+TEST(LimbSwap, TurnedAroundFacesBackOnTheSameLimbEnds) {
+  // Facing the sensor with the left arm out sideways and the left knee bent: turned around,
+  // the body faces away, its waist where it was, and each limb ends where the opposite one
+  // ended. The spine is straight, so the turned shoulders and hips lie exactly where the
+  // opposite ones were and every end is in reach (ReachLimb places it exactly).
+  const ArticulatedBody body(BodyShape::FromHeight(1.75));
+  ArticulatedPose pose = FacingSensor(body);
+  pose.local[static_cast<int>(S::kLeftUpperArm)] = Rx(-1.2);
+  pose.local[static_cast<int>(S::kLeftThigh)] = Ry(0.5);
+  pose.hinge_angle[static_cast<int>(S::kLeftShin)] = 0.9;
+  const Eigen::Vector3d up(0, -1, 0);
+  const PosedBody3 before = body.Pose(pose);
+  const PosedBody3 after = body.Pose(TurnedAround(body, pose, up));
+  const auto forward = [&](const PosedBody3& p) {
+    return p.sensor_from_segment[static_cast<int>(S::kPelvis)].linear().col(0);
+  };
+  EXPECT_NEAR(forward(after).dot(forward(before)), -1.0, 1e-9);
+  EXPECT_LT((after.skeleton[Joint::kWaist] - before.skeleton[Joint::kWaist]).norm(), 1e-12);
+  const std::pair<Limb, Limb> opposite[] = {{Limb::kLeftArm, Limb::kRightArm},
+                                            {Limb::kRightArm, Limb::kLeftArm},
+                                            {Limb::kLeftLeg, Limb::kRightLeg},
+                                            {Limb::kRightLeg, Limb::kLeftLeg}};
+  for (const auto& [limb, other] : opposite)
+    EXPECT_LT((LimbEnd(body, after, limb) - LimbEnd(body, before, other)).norm(), 1e-6)
+        << static_cast<int>(limb);
+  for (const auto& [joint, other] : {std::pair{Joint::kLeftShoulder, Joint::kRightShoulder},
+                                     {Joint::kLeftHip, Joint::kRightHip}})
+    EXPECT_LT((after.skeleton[joint] - before.skeleton[other]).norm(), 1e-9);
+
+  // Without an up there is no turn: the limbs are swapped in place, as SwappedLimbs does.
+  const PosedBody3 unturned = body.Pose(TurnedAround(body, pose, Eigen::Vector3d::Zero()));
+  const PosedBody3 swapped = body.Pose(SwappedLimbs(body, SwappedLimbs(body, pose, kArms), kLegs));
+  EXPECT_NEAR(forward(unturned).dot(forward(before)), 1.0, 1e-9);
+  for (int j = 0; j < kJointCount; ++j)
+    EXPECT_LT((unturned.skeleton.position[j] - swapped.skeleton.position[j]).norm(), 1e-12) << j;
+}
+
 }  // namespace
 }  // namespace reenact::capture
