@@ -412,7 +412,6 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
     out.skeleton = WithConfidence(
         c.fit, obs(),
         c.from_calibration_pose ? options_.calibration.fit.inlier_m : options_.fit.inlier_m, true);
-    if (c.from_calibration_pose) frames_since_silhouette_start_ = -1;
     calibration_ = std::move(c);
     out.state = state_;
     return out;

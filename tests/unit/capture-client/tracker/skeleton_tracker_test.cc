@@ -278,18 +278,16 @@ TEST(SkeletonTracker, StartsBackToTheSensorWithoutTheCalibrationPose) {
   EXPECT_LT(worst * 180 / M_PI, 30.0);
 }
 
-// Heading errors (radians, HeadingError) of the track of CesiumMan walking CMU 131_02 from its
-// first frame, on frames [first, end), as reenact-eval tracker runs it (Kinect-like noise).
-std::vector<double> CesiumWalkHeadingErrors(const SkeletonTrackerOptions& options, int first,
-                                            int end) {
-  SyntheticBodySpec body;
-  body.gltf_path = std::string(REENACT_SHARED_DATA_DIR) + "/models/CesiumMan.glb";
-  const std::string bvh = std::string(REENACT_SHARED_DATA_DIR) + "/mocap/cmu-131_02-walk.bvh";
-  static const SyntheticScene scene = SyntheticScene::Create("bvh:" + bvh, 1, body).value();
+// Tracks `scene` from its first frame as reenact-eval tracker does (Kinect-like depth noise)
+// and calls visit(skeleton, truth, up) on every frame in [first, end): the track's skeleton,
+// the ground truth and the world's up, all in the sensor frame. A frame without a skeleton
+// fails the test.
+template <typename Visit>
+void TrackFrames(const SyntheticScene& scene, const SkeletonTrackerOptions& options, int first,
+                 int end, Visit visit) {
   SkeletonTracker tracker(scene.sensor_camera(), 0.001, options);
   SyntheticRenderOptions render;
   render.depth_noise = true;
-  std::vector<double> errors;
   for (int f = 0; f < end; ++f) {
     const Eigen::Isometry3d world_from_sensor = scene.world_from_sensor(f);
     const TrackFrameResult r =
@@ -297,10 +295,24 @@ std::vector<double> CesiumWalkHeadingErrors(const SkeletonTrackerOptions& option
     if (f < first) continue;
     EXPECT_TRUE(r.skeleton) << f;
     if (!r.skeleton) continue;
-    const Skeleton truth = scene.skeleton_in_world(f).Transformed(world_from_sensor.inverse());
-    const Eigen::Vector3d up = world_from_sensor.linear().transpose() * scene.world_up();
-    errors.push_back(HeadingError(*r.skeleton, truth, up));
+    visit(*r.skeleton, scene.skeleton_in_world(f).Transformed(world_from_sensor.inverse()),
+          Eigen::Vector3d(world_from_sensor.linear().transpose() * scene.world_up()));
   }
+}
+
+// Heading errors (radians, HeadingError) of the track of CesiumMan walking CMU 131_02 from its
+// first frame, on frames [first, end).
+std::vector<double> CesiumWalkHeadingErrors(const SkeletonTrackerOptions& options, int first,
+                                            int end) {
+  SyntheticBodySpec body;
+  body.gltf_path = std::string(REENACT_SHARED_DATA_DIR) + "/models/CesiumMan.glb";
+  const std::string bvh = std::string(REENACT_SHARED_DATA_DIR) + "/mocap/cmu-131_02-walk.bvh";
+  static const SyntheticScene scene = SyntheticScene::Create("bvh:" + bvh, 1, body).value();
+  std::vector<double> errors;
+  TrackFrames(scene, options, first, end,
+              [&](const Skeleton& track, const Skeleton& truth, const Eigen::Vector3d& up) {
+                errors.push_back(HeadingError(track, truth, up));
+              });
   return errors;
 }
 
@@ -472,21 +484,12 @@ double CmuWalkHandError(const SkeletonTrackerOptions& options, int first, int en
                         std::initializer_list<Joint> hands) {
   const std::string bvh = std::string(REENACT_SHARED_DATA_DIR) + "/mocap/cmu-131_01-walk.bvh";
   static const SyntheticScene scene = SyntheticScene::Create("bvh:" + bvh, 1).value();
-  SkeletonTracker tracker(scene.sensor_camera(), 0.001, options);
-  SyntheticRenderOptions render;
-  render.depth_noise = true;
   double sum = 0;
   int n = 0;
-  for (int f = 0; f < end; ++f) {
-    const TrackFrameResult r = tracker.Track(scene.RenderSensor(f, render).depth,
-                                             scene.world_from_sensor(f), scene.world_up());
-    if (f < first) continue;
-    const Skeleton truth =
-        scene.skeleton_in_world(f).Transformed(scene.world_from_sensor(f).inverse());
-    EXPECT_TRUE(r.skeleton) << f;
-    if (!r.skeleton) continue;
-    for (const Joint hand : hands) sum += ((*r.skeleton)[hand] - truth[hand]).norm(), ++n;
-  }
+  TrackFrames(scene, options, first, end,
+              [&](const Skeleton& track, const Skeleton& truth, const Eigen::Vector3d&) {
+                for (const Joint hand : hands) sum += (track[hand] - truth[hand]).norm(), ++n;
+              });
   return n ? sum / n : 1e9;
 }
 
