@@ -46,13 +46,13 @@ struct SkinnedBody::Data {
 
 namespace {
 
-// The part a skin joint mapped to our joint j carries (hands with the forearms, feet with
-// the shins, the neck with the upper torso, as body_model.h's segments).
+// The part a skin joint mapped to our joint j carries: the cylinder along which the skin
+// that j moves lies, from j to its child (hands with the forearms, feet with the shins).
 BodyPart PartOfJoint(Joint j) {
   switch (j) {
     case Joint::kHead:
-      return BodyPart::kHead;
     case Joint::kNeck:
+      return BodyPart::kHead;
     case Joint::kTorso:
       return BodyPart::kUpperTorso;
     case Joint::kWaist:

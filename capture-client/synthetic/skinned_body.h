@@ -28,9 +28,13 @@
 //  - torso: the mapped node where the rig names one, else (CesiumMan) mean(neck, waist).
 // Every joint has confidence 1.
 //
-// Body-part labels (the 11 parts of skeleton.h): each skin joint gets a part: head -> head,
-// neck -> upper torso, waist -> lower torso, torso -> upper torso, shoulder -> upper arm,
-// elbow and hand -> forearm, hip -> thigh, knee and foot -> shin; a joint that is none of
+// Body-part labels (the 11 parts of skeleton.h): each skin joint gets a part: head and neck
+// -> head, waist -> lower torso, torso -> upper torso, shoulder -> upper arm, elbow and hand
+// -> forearm, hip -> thigh, knee and foot -> shin. A rig's joint moves the skin between it
+// and its child, so the neck joint's skin is the neck above it, which the head's cylinder
+// (neck -> head) covers: the procedural body's neck segment lies below its neck joint
+// (body_model.h) and is upper torso, a rig's lies above (CesiumMan's neck joint sits 6 cm
+// above its shoulders, its neck skin up to the skull's base). A joint that is none of
 // these takes its nearest labelled ancestor's part, except spine joints between the waist
 // and the neck, which are upper torso when their bind position lies above the torso joint
 // along the waist-neck line, else lower torso. A vertex carries the part of its dominant

@@ -340,15 +340,22 @@ TEST(SkinnedBody, AnimationPoseTurnsTheAnimatedJointAndStandsOnTheFloor) {
 TEST(SkinnedBody, VertexLabelsFollowTheDominantJoint) {
   const TestRig rig;
   const SkinnedBody body = RigBody(rig);
-  const std::map<std::string, BodyPart> part = {
-      {"Hips", BodyPart::kLowerTorso},           {"Spine", BodyPart::kUpperTorso},
-      {"Neck", BodyPart::kUpperTorso},           {"Head", BodyPart::kHead},
-      {"LeftArm", BodyPart::kLeftUpperArm},      {"LeftForeArm", BodyPart::kLeftForearm},
-      {"LeftHand", BodyPart::kLeftForearm},      {"RightArm", BodyPart::kRightUpperArm},
-      {"RightForeArm", BodyPart::kRightForearm}, {"RightHand", BodyPart::kRightForearm},
-      {"LeftUpLeg", BodyPart::kLeftThigh},       {"LeftLeg", BodyPart::kLeftShin},
-      {"LeftFoot", BodyPart::kLeftShin},         {"RightUpLeg", BodyPart::kRightThigh},
-      {"RightLeg", BodyPart::kRightShin},        {"RightFoot", BodyPart::kRightShin}};
+  const std::map<std::string, BodyPart> part = {{"Hips", BodyPart::kLowerTorso},
+                                                {"Spine", BodyPart::kUpperTorso},
+                                                {"Neck", BodyPart::kHead},
+                                                {"Head", BodyPart::kHead},
+                                                {"LeftArm", BodyPart::kLeftUpperArm},
+                                                {"LeftForeArm", BodyPart::kLeftForearm},
+                                                {"LeftHand", BodyPart::kLeftForearm},
+                                                {"RightArm", BodyPart::kRightUpperArm},
+                                                {"RightForeArm", BodyPart::kRightForearm},
+                                                {"RightHand", BodyPart::kRightForearm},
+                                                {"LeftUpLeg", BodyPart::kLeftThigh},
+                                                {"LeftLeg", BodyPart::kLeftShin},
+                                                {"LeftFoot", BodyPart::kLeftShin},
+                                                {"RightUpLeg", BodyPart::kRightThigh},
+                                                {"RightLeg", BodyPart::kRightShin},
+                                                {"RightFoot", BodyPart::kRightShin}};
   ASSERT_EQ(body.vertex_parts().size(), rig.positions.size());
   for (size_t i = 0; i < rig.positions.size(); ++i) {
     const std::string& name = rig.joints[rig.vertex_joints[i][0]].name;  // dominant by build
@@ -520,6 +527,45 @@ TEST(SkinnedBody, TorsoPixelsSplitAtTheTorsoJoint) {
   }
   EXPECT_GT(near_upper, 20);
   EXPECT_GT(near_lower, 20);
+}
+
+// A rig's neck joint moves the neck above it, which lies along the head's cylinder (neck ->
+// head), so its skin is labelled head: no torso pixel lies more than 1 cm above the neck
+// joint along waist -> neck, and the neck between the neck joint and the rig's head node,
+// within 5 cm of the spine's line, is head.
+TEST(SkinnedBody, NeckSkinAboveTheNeckJointIsHead) {
+  if (!std::filesystem::exists(kCesiumMan)) GTEST_SKIP() << kCesiumMan << " is absent";
+  const Expected<SkinnedBody> body = SkinnedBody::Load(kCesiumMan);
+  ASSERT_TRUE(body.ok()) << body.error().message;
+  const PinholeCamera camera = PinholeCamera::KinectLike();
+  const PosedSkin posed = body->Skin(body->BindPose());
+  const Skeleton& k = posed.skeleton;
+  const Vector3d up = (k[Joint::kNeck] - k[Joint::kWaist]).normalized();
+  int neck_pixels = 0;
+  for (const Vector3d& eye : {Vector3d(0, -2.6, 1.2), Vector3d(1.5, -2, 1.6)}) {
+    const Eigen::Isometry3d world_from_camera = LookAt(eye, {0, 0, 1.0});
+    Image<double> z_buffer;
+    const SyntheticView v = Render(*body, posed, camera, world_from_camera, &z_buffer);
+    for (int y = 0; y < camera.height; ++y)
+      for (int x = 0; x < camera.width; ++x) {
+        const int l = v.part_labels.at(x, y);
+        if (l == kBackgroundLabel) continue;
+        const double z = z_buffer.at(x, y);
+        const Vector3d p = world_from_camera * Vector3d(z * (x - camera.cx) / camera.fx,
+                                                        z * (y - camera.cy) / camera.fy, z);
+        const Vector3d from_neck = p - k[Joint::kNeck];
+        const double s = from_neck.dot(up);
+        if (l == PartLabel(BodyPart::kUpperTorso) || l == PartLabel(BodyPart::kLowerTorso)) {
+          EXPECT_LT(s, 0.01) << x << " " << y << " " << l;
+        }
+        const double across = (from_neck - s * up).norm();
+        if (s > 0.01 && s < 0.04 && across < 0.05) {
+          EXPECT_EQ(l, PartLabel(BodyPart::kHead)) << x << " " << y << " " << s;
+          ++neck_pixels;
+        }
+      }
+  }
+  EXPECT_GT(neck_pixels, 50);
 }
 
 }  // namespace
