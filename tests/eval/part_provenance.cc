@@ -138,6 +138,7 @@ PartProvenance MeasurePartProvenance(const ReferenceRender& render,
         }
         out.wrong_pixels += share * wrong / texels.alpha;
         out.wrong_seen_pixels += share * wrong_seen / texels.alpha;
+        if (seen_at_pixel == drawn) out.wrong_texture_pixels += share * wrong_seen / texels.alpha;
         out.doubled_limb_pixels += share * doubled / texels.alpha;
       }
     }

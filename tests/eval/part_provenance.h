@@ -35,7 +35,13 @@
 // the truth shows no subject there (an extra pixel: a silhouette error, which the IoU
 // measures). It is 0 for a pixel copy of the right view (up to bilinear sampling across
 // label borders) and counts what the viewer sees as another part's texture where the body
-// shows this one.
+// shows this one. Its wrong shares are of two kinds: where the drawn cylinder is not the part
+// the truth shows (the model's geometry: where its cylinders stand against the body's parts,
+// which no choice of texture changes), and where it is, so that only the texture came from
+// another part (the texturing's own error):
+//
+//   wrong_texture_rate = sum of wrong shares against seen_label(x, y) over the pixels where
+//                        the truth shows the drawn part / subject pixels
 //
 // Both rates count a texel a few centimetres across a part border as wrong: a seam that the
 // cylinders' texture mapping places a little off the body's border, or the model's part
@@ -80,11 +86,16 @@ struct PartProvenance {
   double wrong_pixels = 0;  // sum of the textured pixels' wrong shares
   // The same against the part the ground truth shows at the pixel (0 unless measured).
   double wrong_seen_pixels = 0;
+  // Of those, the pixels where the truth shows the drawn part (0 unless measured).
+  double wrong_texture_pixels = 0;
   // The doubled-limb shares (above; 0 unless measured).
   double doubled_limb_pixels = 0;
   double WrongPartRate() const { return subject_pixels ? wrong_pixels / subject_pixels : 0.0; }
   double WrongSeenPartRate() const {
     return subject_pixels ? wrong_seen_pixels / subject_pixels : 0.0;
+  }
+  double WrongTextureRate() const {
+    return subject_pixels ? wrong_texture_pixels / subject_pixels : 0.0;
   }
   double DoubledLimbRate() const {
     return subject_pixels ? doubled_limb_pixels / subject_pixels : 0.0;
@@ -111,8 +122,9 @@ double WrongShareOfSample(const SourceLabels& source, double u, double v, int ex
 // Sums the wrong shares over a reference render. cylinder_parts[i] is the body part of the
 // render's part index i; source(n) gives stored frame n's crop mask and labels (called once
 // per contributor of a textured pixel; it may cache). seen: the ground truth from the render's
-// camera, for wrong_seen_pixels and doubled_limb_pixels; null leaves both 0. Preconditions
-// (CHECK): every part index in the render is < cylinder_parts.size(); source(n) returns
+// camera, for wrong_seen_pixels, wrong_texture_pixels and doubled_limb_pixels; null leaves
+// them 0. Preconditions (CHECK): every part index in the render is < cylinder_parts.size();
+// source(n) returns
 // non-null images for every source frame; seen, when given, has labels of the render's size,
 // focal_px > 0 and border_m >= 0, both finite.
 PartProvenance MeasurePartProvenance(const ReferenceRender& render,

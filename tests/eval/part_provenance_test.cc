@@ -200,6 +200,39 @@ TEST(PartProvenance, ASeamNearThePartsBorderIsNotADoubledLimb) {
               p.wrong_seen_pixels, 1e-3 * s.cap);
 }
 
+// The seen-part rate's two kinds: where the truth shows the drawn arm, a torso texel is the
+// texture's error; where it shows the torso, the arm's cylinder stands where the body shows
+// another part (the model's geometry) and the texture's rate leaves it out, as it leaves out
+// extra pixels (the truth shows no subject there). Seen labels: arm left of x = 100, torso
+// from there on, background from x = 120 on.
+TEST(PartProvenance, TheTexturesRateCountsOnlyWrongTexelsOnTheRightPart) {
+  const CapOverALabelBorder s;
+  ImageLabel8 labels(160, 120, 1, kArm);
+  for (int y = 0; y < 120; ++y)
+    for (int x = 100; x < 160; ++x) labels.at(x, y) = x < 120 ? kTorso : kBackgroundLabel;
+  const SeenParts seen = s.Seen(labels);
+  const PartProvenance p = MeasurePartProvenance(
+      s.render, s.cylinder_parts, [&](int) { return s.source(); }, &seen);
+  ASSERT_GT(s.CapColumns(84, 100), 400);
+  ASSERT_GT(s.CapColumns(0, 84), 400);
+  // Columns 84..99: torso texels on the seen arm. 100..119: seen torso, texels torso, right
+  // for the part seen. 120 on: extra pixels, the drawn arm expected, torso texels wrong.
+  EXPECT_NEAR(p.wrong_texture_pixels, s.CapColumns(84, 100), 1e-3 * s.cap);
+  EXPECT_NEAR(p.wrong_seen_pixels, s.CapColumns(84, 100) + s.CapColumns(120, 160), 1e-3 * s.cap);
+  EXPECT_NEAR(p.WrongTextureRate(), p.wrong_texture_pixels / p.subject_pixels, 1e-12);
+  // Seen torso everywhere: every wrong texel is the geometry's (the arm drawn on the torso).
+  const ImageLabel8 torso(160, 120, 1, static_cast<uint8_t>(kTorso));
+  const SeenParts all_torso = s.Seen(torso);
+  const PartProvenance q = MeasurePartProvenance(
+      s.render, s.cylinder_parts, [&](int) { return s.source(); }, &all_torso);
+  EXPECT_GT(q.wrong_seen_pixels, 400);
+  EXPECT_EQ(q.wrong_texture_pixels, 0.0);
+  // Without seen labels nothing is measured.
+  EXPECT_EQ(MeasurePartProvenance(s.render, s.cylinder_parts, [&](int) { return s.source(); })
+                .wrong_texture_pixels,
+            0.0);
+}
+
 // Source texels labelled background (the stored frame's mask wider than its body) are wrong
 // against any part seen, but a silhouette error, not another part's texture.
 TEST(PartProvenance, BackgroundTexelsAreNotADoubledLimb) {

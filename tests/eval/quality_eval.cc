@@ -303,6 +303,7 @@ Expected<QualityRun> RunQuality(const QualityOptions& options) {
         row.colour_mae += e->comparison.colour_mae;
         row.wrong_part_rate += e->provenance.WrongPartRate();
         row.wrong_seen_part_rate += e->provenance.WrongSeenPartRate();
+        row.wrong_texture_rate += e->provenance.WrongTextureRate();
         row.doubled_limb_rate += e->provenance.DoubledLimbRate();
         row.untextured_rate += e->provenance.UntexturedRate();
         row.reference_iou += e->reference_iou;
@@ -316,9 +317,9 @@ Expected<QualityRun> RunQuality(const QualityOptions& options) {
       }
       row.flicker = row.reenacted_change - row.truth_change;
       if (psnr_frames) row.psnr_db /= psnr_frames;
-      for (double* mean :
-           {&row.ssim, &row.iou, &row.colour_mae, &row.wrong_part_rate, &row.wrong_seen_part_rate,
-            &row.doubled_limb_rate, &row.untextured_rate, &row.reference_iou})
+      for (double* mean : {&row.ssim, &row.iou, &row.colour_mae, &row.wrong_part_rate,
+                           &row.wrong_seen_part_rate, &row.wrong_texture_rate,
+                           &row.doubled_limb_rate, &row.untextured_rate, &row.reference_iou})
         *mean /= row.n;
       row.ms_per_frame = ms.empty() ? 0 : UpperMedian(ms);
       run.rows.push_back(row);
@@ -334,7 +335,8 @@ Expected<QualityRun> RunQuality(const QualityOptions& options) {
           SideBySide(e->truth.color, e->truth.mask, e->rendered.color, e->rendered.subject_mask));
       if (!written.ok()) return written.error();
       run.images.push_back({method->name, pair, path, e->comparison, e->provenance.WrongPartRate(),
-                            e->provenance.WrongSeenPartRate(), e->provenance.DoubledLimbRate()});
+                            e->provenance.WrongSeenPartRate(), e->provenance.WrongTextureRate(),
+                            e->provenance.DoubledLimbRate()});
     }
   }
   return run;

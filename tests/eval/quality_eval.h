@@ -91,6 +91,7 @@ struct QualityRow {
   double colour_mae = 0;            // 0..255
   double wrong_part_rate = 0;       // 0..1, against the drawn cylinder's part
   double wrong_seen_part_rate = 0;  // 0..1, against the part the truth shows there
+  double wrong_texture_rate = 0;    // 0..1, of that where the truth shows the drawn part
   double doubled_limb_rate = 0;     // 0..1, another part that the truth shows nowhere near
   double untextured_rate = 0;       // 0..1, share of subject pixels in flat colour
   double reference_iou = 0;         // GL vs reference silhouette (provenance check)
@@ -109,6 +110,7 @@ struct QualityImage {
   SubjectComparison comparison;  // of this frame
   double wrong_part_rate = 0;
   double wrong_seen_part_rate = 0;
+  double wrong_texture_rate = 0;
   double doubled_limb_rate = 0;
 };
 

@@ -62,6 +62,7 @@ proto::Report QualityReport(const QualityRun& run) {
                               .Add("colour_mae", r.colour_mae)
                               .Add("wrong_part_rate", r.wrong_part_rate)
                               .Add("wrong_seen_part_rate", r.wrong_seen_part_rate)
+                              .Add("wrong_texture_rate", r.wrong_texture_rate)
                               .Add("doubled_limb_rate", r.doubled_limb_rate)
                               .Add("untextured_rate", r.untextured_rate)
                               .Add("reference_iou", r.reference_iou)
@@ -85,7 +86,10 @@ std::vector<std::string> QualityRules() {
       "(a pixel copy of the stored frame at the sensor's own view is not 0); "
       "wrong_seen_part_rate: the same against the part the ground truth shows at that output "
       "pixel (the drawn part where the truth shows no subject), so only what the viewer sees "
-      "as another part's texture counts; doubled_limb_rate: the part of that whose source "
+      "as another part's texture counts; wrong_texture_rate: the part of that where the "
+      "ground truth shows the drawn cylinder's part (the texture's own error; the rest is the "
+      "model's geometry: a cylinder drawn where the body shows another part); "
+      "doubled_limb_rate: the part of the seen-part rate whose source "
       "texels show a part that the ground truth shows nowhere within " +
           Number(100 * kDoubledLimbBorderM) +
           " cm of the output pixel (measured in the image at the pixel's depth), so a seam a few "
@@ -191,18 +195,19 @@ std::string QualityMarkdown(const QualityOptions& options, const QualityRun& run
     if (auto m = FindQualityMethod(name); m.ok())
       md << "- `" << name << "`: " << (*m)->summary << ".\n";
   md << "\n| method | view_deg | n | psnr_db | ssim | iou | colour_mae | wrong_part_rate | "
-        "wrong_seen_part_rate | doubled_limb_rate | untextured_rate | reference_iou | "
-        "ms_per_frame | flicker | reenacted_change | truth_change | error_change |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "wrong_seen_part_rate | wrong_texture_rate | doubled_limb_rate | untextured_rate | "
+        "reference_iou | ms_per_frame | flicker | reenacted_change | truth_change | "
+        "error_change |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const QualityRow& r : run.rows)
     md << "| " << r.method << " | " << Number(r.view_deg) << " | " << r.n << " | "
        << Fixed(r.psnr_db, 2) << " | " << Fixed(r.ssim, 3) << " | " << Fixed(r.iou, 3) << " | "
        << Fixed(r.colour_mae, 1) << " | " << Fixed(r.wrong_part_rate, 3) << " | "
-       << Fixed(r.wrong_seen_part_rate, 3) << " | " << Fixed(r.doubled_limb_rate, 3) << " | "
-       << Fixed(r.untextured_rate, 3) << " | " << Fixed(r.reference_iou, 4) << " | "
-       << Fixed(r.ms_per_frame, 1) << " | " << Fixed(r.flicker, 2) << " | "
-       << Fixed(r.reenacted_change, 2) << " | " << Fixed(r.truth_change, 2) << " | "
-       << Fixed(r.error_change, 2) << " |\n";
+       << Fixed(r.wrong_seen_part_rate, 3) << " | " << Fixed(r.wrong_texture_rate, 3) << " | "
+       << Fixed(r.doubled_limb_rate, 3) << " | " << Fixed(r.untextured_rate, 3) << " | "
+       << Fixed(r.reference_iou, 4) << " | " << Fixed(r.ms_per_frame, 1) << " | "
+       << Fixed(r.flicker, 2) << " | " << Fixed(r.reenacted_change, 2) << " | "
+       << Fixed(r.truth_change, 2) << " | " << Fixed(r.error_change, 2) << " |\n";
   md << "\n" << SubjectLightLine(run) << "\n";
   md << "\nHow the figures are made:\n\n";
   for (const std::string& rule : QualityRules()) md << "- " << rule << "\n";
@@ -224,7 +229,8 @@ std::string QualityMarkdown(const QualityOptions& options, const QualityRun& run
          << " dB, SSIM " << Fixed(image.comparison.ssim, 3) << ", IoU "
          << Fixed(image.comparison.iou, 3) << ", wrong-part rate "
          << Fixed(image.wrong_part_rate, 3) << ", seen-part rate "
-         << Fixed(image.wrong_seen_part_rate, 3) << ", doubled-limb rate "
+         << Fixed(image.wrong_seen_part_rate, 3) << ", wrong-texture rate "
+         << Fixed(image.wrong_texture_rate, 3) << ", doubled-limb rate "
          << Fixed(image.doubled_limb_rate, 3) << "\n\n"
          << "![" << image.method << " frame " << image.pair.frame << " view "
          << Number(image.pair.view_deg) << "](" << link << ")\n";

@@ -13,8 +13,8 @@ namespace {
 QualityRun TwoRows() {
   QualityRun run;
   run.clip_frames = 180;
-  QualityRow a{"thesis", "turn-and-kick", 0,      18,     22.674, 0.8831,  0.8342,
-               5.71,     0.0571,          0.0214, 0.0102, 0,      0.99996, 4.13};
+  QualityRow a{"thesis", "turn-and-kick", 0,      18,     22.674, 0.8831,  0.8342, 5.71,
+               0.0571,   0.0214,          0.0123, 0.0102, 0,      0.99996, 4.13};
   QualityRow b = a;
   b.view_deg = 22.5;
   b.psnr_db = std::numeric_limits<double>::infinity();
@@ -26,8 +26,8 @@ TEST(QualityReport, JsonRowsCarryTheDesignFieldNames) {
   const std::string json = QualityReport(TwoRows()).ToJson();
   for (const char* field :
        {"\"method\"", "\"scenario\"", "\"view_deg\"", "\"n\"", "\"psnr_db\"", "\"ssim\"", "\"iou\"",
-        "\"wrong_part_rate\"", "\"wrong_seen_part_rate\"", "\"doubled_limb_rate\"",
-        "\"ms_per_frame\""})
+        "\"wrong_part_rate\"", "\"wrong_seen_part_rate\"", "\"wrong_texture_rate\"",
+        "\"doubled_limb_rate\"", "\"ms_per_frame\""})
     EXPECT_NE(json.find(field), std::string::npos) << field;
 }
 
@@ -59,8 +59,8 @@ TEST(QualityReport, MarkdownHasTheTableTheRulesAndTheCommand) {
   options.frame_step = 3;
   const std::string md = QualityMarkdown(options, TwoRows(), "docs/quality.md", "MACHINE");
   EXPECT_NE(
-      md.find("| thesis | 0 | 18 | 22.67 | 0.883 | 0.834 | 5.7 | 0.057 | 0.021 | 0.010 | 0.000 | "
-              "1.0000 | 4.1 |"),
+      md.find("| thesis | 0 | 18 | 22.67 | 0.883 | 0.834 | 5.7 | 0.057 | 0.021 | 0.012 | 0.010 | "
+              "0.000 | 1.0000 | 4.1 |"),
       std::string::npos)
       << md;
   EXPECT_NE(md.find("| thesis | 22.5 | 18 | inf |"), std::string::npos) << md;
@@ -68,7 +68,11 @@ TEST(QualityReport, MarkdownHasTheTableTheRulesAndTheCommand) {
   EXPECT_NE(md.find("wrong_part_rate: share of rendered subject pixels"), std::string::npos);
   EXPECT_NE(md.find("wrong_seen_part_rate: the same against the part the ground truth shows"),
             std::string::npos);
-  EXPECT_NE(md.find("doubled_limb_rate: the part of that whose source texels show a part"),
+  EXPECT_NE(md.find("wrong_texture_rate: the part of that where the ground truth shows the drawn "
+                    "cylinder's part"),
+            std::string::npos);
+  EXPECT_NE(md.find("doubled_limb_rate: the part of the seen-part rate whose source texels show "
+                    "a part"),
             std::string::npos);
   EXPECT_NE(md.find("Measured MACHINE."), std::string::npos);
   EXPECT_NE(md.find("every 3rd frame"), std::string::npos);
