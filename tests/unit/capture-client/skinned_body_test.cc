@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <numbers>
 #include <set>
@@ -493,6 +494,29 @@ TEST(SkinnedBody, FrontalRenderOfCesiumManShowsEveryPartWhereItBelongs) {
   }
 }
 
+// Renders the posed body from each eye (looking at target, KinectLike camera) and calls
+// visit(x, y, label, p) for every subject pixel, p its surface point in the world frame.
+template <typename Visit>
+void ForEachSurfacePixel(const SkinnedBody& body, const PosedSkin& posed,
+                         std::initializer_list<Vector3d> eyes, const Vector3d& target,
+                         Visit visit) {
+  const PinholeCamera camera = PinholeCamera::KinectLike();
+  for (const Vector3d& eye : eyes) {
+    const Eigen::Isometry3d world_from_camera = LookAt(eye, target);
+    Image<double> z_buffer;
+    const SyntheticView v = Render(body, posed, camera, world_from_camera, &z_buffer);
+    for (int y = 0; y < camera.height; ++y)
+      for (int x = 0; x < camera.width; ++x) {
+        const int l = v.part_labels.at(x, y);
+        if (l == kBackgroundLabel) continue;
+        const double z = z_buffer.at(x, y);
+        visit(x, y, l,
+              Vector3d(world_from_camera * Vector3d(z * (x - camera.cx) / camera.fx,
+                                                    z * (y - camera.cy) / camera.fy, z)));
+      }
+  }
+}
+
 // The torso's two parts meet exactly at the torso joint's height on the surface (header:
 // each pixel carries its surface point's part, not its triangle's). In the bind pose the
 // split is the plane through the torso joint normal to waist -> neck (CesiumMan derives its
@@ -503,28 +527,19 @@ TEST(SkinnedBody, TorsoPixelsSplitAtTheTorsoJoint) {
   if (!std::filesystem::exists(kCesiumMan)) GTEST_SKIP() << kCesiumMan << " is absent";
   const Expected<SkinnedBody> body = SkinnedBody::Load(kCesiumMan);
   ASSERT_TRUE(body.ok()) << body.error().message;
-  const PinholeCamera camera = PinholeCamera::KinectLike();
   const PosedSkin posed = body->Skin(body->BindPose());
   const Skeleton& k = posed.skeleton;
   const Vector3d up = (k[Joint::kNeck] - k[Joint::kWaist]).normalized();
   int near_upper = 0, near_lower = 0;
-  for (const Vector3d& eye : {Vector3d(0, -2.6, 0.9), Vector3d(1.5, -2, 1.6)}) {
-    const Eigen::Isometry3d world_from_camera = LookAt(eye, {0, 0, 0.8});
-    Image<double> z_buffer;
-    const SyntheticView v = Render(*body, posed, camera, world_from_camera, &z_buffer);
-    for (int y = 0; y < camera.height; ++y)
-      for (int x = 0; x < camera.width; ++x) {
-        const int l = v.part_labels.at(x, y);
-        const bool upper = l == PartLabel(BodyPart::kUpperTorso);
-        if (!upper && l != PartLabel(BodyPart::kLowerTorso)) continue;
-        const double z = z_buffer.at(x, y);
-        const Vector3d p = world_from_camera * Vector3d(z * (x - camera.cx) / camera.fx,
-                                                        z * (y - camera.cy) / camera.fy, z);
-        const double s = (p - k[Joint::kTorso]).dot(up);
-        EXPECT_TRUE(upper ? s > -0.002 : s < 0.002) << x << " " << y << " " << l << " " << s;
-        if (std::abs(s) < 0.01) ++(upper ? near_upper : near_lower);
-      }
-  }
+  ForEachSurfacePixel(*body, posed, {Vector3d(0, -2.6, 0.9), Vector3d(1.5, -2, 1.6)}, {0, 0, 0.8},
+                      [&](int x, int y, int l, const Vector3d& p) {
+                        const bool upper = l == PartLabel(BodyPart::kUpperTorso);
+                        if (!upper && l != PartLabel(BodyPart::kLowerTorso)) return;
+                        const double s = (p - k[Joint::kTorso]).dot(up);
+                        EXPECT_TRUE(upper ? s > -0.002 : s < 0.002)
+                            << x << " " << y << " " << l << " " << s;
+                        if (std::abs(s) < 0.01) ++(upper ? near_upper : near_lower);
+                      });
   EXPECT_GT(near_upper, 20);
   EXPECT_GT(near_lower, 20);
 }
@@ -537,22 +552,13 @@ TEST(SkinnedBody, NeckSkinAboveTheNeckJointIsHead) {
   if (!std::filesystem::exists(kCesiumMan)) GTEST_SKIP() << kCesiumMan << " is absent";
   const Expected<SkinnedBody> body = SkinnedBody::Load(kCesiumMan);
   ASSERT_TRUE(body.ok()) << body.error().message;
-  const PinholeCamera camera = PinholeCamera::KinectLike();
   const PosedSkin posed = body->Skin(body->BindPose());
   const Skeleton& k = posed.skeleton;
   const Vector3d up = (k[Joint::kNeck] - k[Joint::kWaist]).normalized();
   int neck_pixels = 0;
-  for (const Vector3d& eye : {Vector3d(0, -2.6, 1.2), Vector3d(1.5, -2, 1.6)}) {
-    const Eigen::Isometry3d world_from_camera = LookAt(eye, {0, 0, 1.0});
-    Image<double> z_buffer;
-    const SyntheticView v = Render(*body, posed, camera, world_from_camera, &z_buffer);
-    for (int y = 0; y < camera.height; ++y)
-      for (int x = 0; x < camera.width; ++x) {
-        const int l = v.part_labels.at(x, y);
-        if (l == kBackgroundLabel) continue;
-        const double z = z_buffer.at(x, y);
-        const Vector3d p = world_from_camera * Vector3d(z * (x - camera.cx) / camera.fx,
-                                                        z * (y - camera.cy) / camera.fy, z);
+  ForEachSurfacePixel(
+      *body, posed, {Vector3d(0, -2.6, 1.2), Vector3d(1.5, -2, 1.6)}, {0, 0, 1.0},
+      [&](int x, int y, int l, const Vector3d& p) {
         const Vector3d from_neck = p - k[Joint::kNeck];
         const double s = from_neck.dot(up);
         if (l == PartLabel(BodyPart::kUpperTorso) || l == PartLabel(BodyPart::kLowerTorso)) {
@@ -563,8 +569,7 @@ TEST(SkinnedBody, NeckSkinAboveTheNeckJointIsHead) {
           EXPECT_EQ(l, PartLabel(BodyPart::kHead)) << x << " " << y << " " << s;
           ++neck_pixels;
         }
-      }
-  }
+      });
   EXPECT_GT(neck_pixels, 50);
 }
 
