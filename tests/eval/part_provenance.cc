@@ -137,8 +137,9 @@ PartProvenance MeasurePartProvenance(const ReferenceRender& render,
           if (label != kBackgroundLabel && distances->At(label, x, y) > border_px) doubled += w;
         }
         out.wrong_pixels += share * wrong / texels.alpha;
-        out.wrong_seen_pixels += share * wrong_seen / texels.alpha;
-        if (seen_at_pixel == drawn) out.wrong_texture_pixels += share * wrong_seen / texels.alpha;
+        const double seen_share = share * wrong_seen / texels.alpha;
+        out.wrong_seen_pixels += seen_share;
+        if (seen_at_pixel == drawn) out.wrong_texture_pixels += seen_share;
         out.doubled_limb_pixels += share * doubled / texels.alpha;
       }
     }

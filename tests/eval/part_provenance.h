@@ -124,9 +124,8 @@ double WrongShareOfSample(const SourceLabels& source, double u, double v, int ex
 // per contributor of a textured pixel; it may cache). seen: the ground truth from the render's
 // camera, for wrong_seen_pixels, wrong_texture_pixels and doubled_limb_pixels; null leaves
 // them 0. Preconditions (CHECK): every part index in the render is < cylinder_parts.size();
-// source(n) returns
-// non-null images for every source frame; seen, when given, has labels of the render's size,
-// focal_px > 0 and border_m >= 0, both finite.
+// source(n) returns non-null images for every source frame; seen, when given, has labels of
+// the render's size, focal_px > 0 and border_m >= 0, both finite.
 PartProvenance MeasurePartProvenance(const ReferenceRender& render,
                                      std::span<const BodyPart> cylinder_parts,
                                      const std::function<SourceLabels(int frame)>& source,
