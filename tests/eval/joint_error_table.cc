@@ -10,7 +10,7 @@ bool Usable(const Skeleton& s, Joint j) { return s.Has(j) && s[j].allFinite(); }
 
 }  // namespace
 
-std::optional<Eigen::Matrix3d> TruthBodyFrame(const Skeleton& t) {
+std::optional<Eigen::Matrix3d> BodyFrame(const Skeleton& t) {
   for (Joint j : {Joint::kNeck, Joint::kWaist, Joint::kLeftShoulder, Joint::kRightShoulder,
                   Joint::kLeftHip, Joint::kRightHip})
     if (!Usable(t, j)) return std::nullopt;
@@ -30,7 +30,7 @@ std::optional<Eigen::Matrix3d> TruthBodyFrame(const Skeleton& t) {
 }
 
 bool JointErrorTable::Add(const Skeleton& estimate, const Skeleton& truth) {
-  const std::optional<Eigen::Matrix3d> frame = TruthBodyFrame(truth);
+  const std::optional<Eigen::Matrix3d> frame = BodyFrame(truth);
   if (!frame) return false;
   for (int j = 0; j < kJointCount; ++j) {
     const Joint joint = static_cast<Joint>(j);

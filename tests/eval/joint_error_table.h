@@ -50,8 +50,8 @@ class JointErrorTable {
   std::array<Sum, kJointCount> sums_{};
 };
 
-// The ground-truth body frame of the header (columns x, y, z in the skeleton's frame), or
-// nothing when it is undefined.
-std::optional<Eigen::Matrix3d> TruthBodyFrame(const Skeleton& truth);
+// The body frame of the header built on any skeleton (columns x, y, z in the skeleton's
+// frame), or nothing when it is undefined.
+std::optional<Eigen::Matrix3d> BodyFrame(const Skeleton& skeleton);
 
 }  // namespace reenact::eval

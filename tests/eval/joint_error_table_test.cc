@@ -23,7 +23,7 @@ Skeleton Truth(double yaw, double twist = 0) {
 
 TEST(JointErrorTable, BodyFrameIsRightForwardUp) {
   // Yaw 0: the subject faces world -y, its right is world -x, up world +z.
-  const auto r = TruthBodyFrame(Truth(0));
+  const auto r = BodyFrame(Truth(0));
   ASSERT_TRUE(r);
   EXPECT_TRUE(r->col(0).isApprox(Eigen::Vector3d(-1, 0, 0), 1e-12)) << r->col(0).transpose();
   EXPECT_TRUE(r->col(1).isApprox(Eigen::Vector3d(0, -1, 0), 1e-12)) << r->col(1).transpose();
@@ -37,7 +37,7 @@ TEST(JointErrorTable, AConstantOffsetInTheBodyFrameIsAllBias) {
   JointErrorTable table;
   for (int k = 0; k < 36; ++k) {
     const Skeleton truth = Truth(2 * std::numbers::pi * k / 36);
-    const Eigen::Matrix3d r = *TruthBodyFrame(truth);
+    const Eigen::Matrix3d r = *BodyFrame(truth);
     Skeleton estimate = truth;
     estimate[Joint::kLeftHand] += r * offset_body;
     ASSERT_TRUE(table.Add(estimate, truth));

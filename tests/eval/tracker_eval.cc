@@ -6,11 +6,13 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <sstream>
 
 #include "capture-client/synthetic/synthetic_scene.h"
 #include "common/estimate/median.h"
 #include "tests/eval/body_heading.h"
+#include "tests/eval/calibration_aligned_error.h"
 #include "tests/eval/quality_cli.h"
 
 namespace reenact::eval {
@@ -74,6 +76,10 @@ double Mpjpe(const Skeleton& a, const Skeleton& b) {
   return sum / kJointCount;
 }
 
+double Mean(const std::vector<double>& v) {
+  return v.empty() ? 0 : std::accumulate(v.begin(), v.end(), 0.0) / v.size();
+}
+
 double Percentile90(std::vector<double> v) {
   if (v.empty()) return 0;
   std::sort(v.begin(), v.end());
@@ -105,7 +111,8 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
   row.variant = variant;
   row.iterations = iterations;
   row.subsample = subsample;
-  std::vector<double> errors, headings, ms, cpu;
+  std::vector<double> errors, aligned_errors, headings, ms, cpu;
+  std::optional<CalibrationAlignment> alignment;
   const Eigen::Vector3d world_up = scene.world_up();
   std::optional<Skeleton> previous_truth, previous_world;
   capture::TrackState last = capture::TrackState::kWaitingForCalibration;
@@ -139,6 +146,12 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
       ++row.tracked;
       err = Mpjpe(*r.skeleton, truth);
       errors.push_back(err);
+      if (r.calibrated)
+        alignment = tracker.calibration()->from_calibration_pose
+                        ? CalibrationAlignment::FromCalibrationFrame(*r.skeleton, truth)
+                        : std::nullopt;
+      else if (alignment)
+        aligned_errors.push_back(Mpjpe(alignment->Aligned(*r.skeleton), truth));
       const Eigen::Vector3d up = world_from_sensor.linear().transpose() * world_up;
       if (const auto h = HeadingErrorDeg(*r.skeleton, truth, up)) headings.push_back(*h);
       joints->Add(*r.skeleton, truth);
@@ -157,10 +170,9 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
     previous_world = world;
   }
   row.tracked_rate = row.frames ? static_cast<double>(row.tracked) / row.frames : 0;
-  double sum = 0;
-  for (double e : errors) sum += e;
-  row.mpjpe_cm = errors.empty() ? 0 : 100 * sum / errors.size();
+  row.mpjpe_cm = 100 * Mean(errors);
   row.p90_cm = 100 * Percentile90(errors);
+  if (!aligned_errors.empty()) row.aligned_mpjpe_cm = 100 * Mean(aligned_errors);
   if (!headings.empty()) {
     row.heading_deg = Median(headings);
     row.reversed_rate = static_cast<double>(std::count_if(headings.begin(), headings.end(),
@@ -251,9 +263,9 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
         .Add("reversed_rate", r.reversed_rate)
         .Add("calib_frame", static_cast<long long>(r.calibration_frame))
         .Add("losses", static_cast<long long>(r.losses))
-        .Add("recoveries", static_cast<long long>(r.recoveries))
-        .Add("ms_per_frame", r.ms_per_frame)
-        .Add("cpu_ms_per_frame", r.cpu_ms_per_frame);
+        .Add("recoveries", static_cast<long long>(r.recoveries));
+    if (r.aligned_mpjpe_cm) row.Add("aligned_mpjpe_cm", *r.aligned_mpjpe_cm);
+    row.Add("ms_per_frame", r.ms_per_frame).Add("cpu_ms_per_frame", r.cpu_ms_per_frame);
     report.rows.push_back(std::move(row));
   }
   for (const TrackerCaseRow& c : run.cases) {

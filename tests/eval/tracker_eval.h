@@ -25,8 +25,14 @@
 // errors), heading_deg (median over the tracked frames of the heading error, body_heading.h:
 // how far the tracked body is turned about the vertical from the truth's) and reversed_rate
 // (the share of those frames with a heading error above 90 degrees: front and back
-// confused), calibration frame, losses and recoveries, ms_per_frame (median wall time of the
-// tracker alone, rendering excluded) and its median CPU time (all of the tracker's threads).
+// confused), calibration frame, losses and recoveries, aligned_mpjpe_cm (the mean 16-joint
+// error over the tracked frames after the calibration frame, each joint moved by the offset
+// between the track and the truth on the calibration frame, in the tracked segment's frame:
+// calibration_aligned_error.h; only for a track started from the calibration pose, each
+// calibration from that pose taking new offsets; it separates the tracking error from a
+// rig's joint definition, the goal's figure stays mpjpe_cm), ms_per_frame (median wall time
+// of the tracker alone, rendering excluded) and its median CPU time (all of the tracker's
+// threads).
 // A second table breaks every row down by the frames that show a hard case according to the
 // ground truth (a case no frame shows gets no row):
 //   back_facing     the body's forward ((l_shoulder - r_shoulder) x (neck - waist)) points
@@ -89,6 +95,8 @@ struct TrackerEvalRow {
   double tracked_rate = 0, mpjpe_cm = 0, p90_cm = 0;
   double heading_deg = 0, reversed_rate = 0;  // see the header comment
   int calibration_frame = -1, losses = 0, recoveries = 0;
+  // See the header comment; nullopt where the track never started from the calibration pose.
+  std::optional<double> aligned_mpjpe_cm;
   double ms_per_frame = 0, cpu_ms_per_frame = 0;
 };
 
