@@ -31,7 +31,8 @@ constexpr const char* kUsage =
     "      CAMERA: tum:DIR | video:FILE | live[:N] |\n"
     "              synthetic:SCENARIO[?frames=N&max_deg=D&subject=0|1&seed=S]\n"
     "      without --headless: the AR view in a window (space, arrows, +/-, s, c, t, q)\n"
-    "  --steady: steady motion (flagged skeletons interpolated across, joints One Euro filtered)\n"
+    "  --steady: steady motion (flagged skeletons interpolated across, joints One Euro filtered,\n"
+    "            for the pose shown and the stored frames alike)\n"
     "  --texturing NAME: thesis | per-part | occlusion | blend | shape | profile | relit\n"
     "      (default relit)\n"
     "      (viewer-client/play/texturing_presets.h; docs/quality.md compares them)\n";

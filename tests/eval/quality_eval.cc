@@ -11,6 +11,7 @@
 #include <map>
 #include <optional>
 #include <random>
+#include <tuple>
 
 #include "capture-client/record/clip_recorder.h"
 #include "capture-client/source/synthetic_source.h"
@@ -125,20 +126,35 @@ struct QualityHarness::State {
   viewer::Renderer renderer;
   PinholeCamera camera;
   std::string gl_renderer;
-  // (stored frame, body shape) -> GL texture index: the part-label maps follow the shape.
-  std::map<std::pair<int, viewer::BodyShape>, int> texture_of_frame;
+  // The same clip with steady_motion (its stored frames on the steady track), on first use.
+  std::optional<viewer::Reenactment> steady_clip;
+  // (stored frame, body shape, steady clip) -> GL texture index: the part-label maps follow
+  // the shape and the stored skeleton.
+  std::map<std::tuple<int, viewer::BodyShape, bool>, int> texture_of_frame;
   std::map<int, int> frame_of_texture;
   std::map<int, ReferenceCrop> crops;  // GL texture index -> the crop as the reference samples it
   std::map<int, ImageLabel8> sensor_labels;  // stored frame -> the scene's labels from the sensor
 
-  int TextureFor(int n, viewer::BodyShape shape) {
-    auto it = texture_of_frame.find({n, shape});
+  const viewer::Reenactment& ClipFor(bool steady) {
+    if (!steady) return clip;
+    if (!steady_clip) {
+      std::vector<proto::ClipFrame> frames;
+      for (int n = 0; n < clip.frame_count(); ++n) frames.push_back(clip.frame(n));
+      viewer::ReenactmentOptions options;
+      options.steady_motion = true;
+      steady_clip.emplace(clip.manifest(), std::move(frames), options);
+    }
+    return *steady_clip;
+  }
+
+  int TextureFor(int n, viewer::BodyShape shape, bool steady) {
+    auto it = texture_of_frame.find({n, shape, steady});
     if (it != texture_of_frame.end()) return it->second;
-    const viewer::StoredTexture t = clip.Texture(n, shape);
+    const viewer::StoredTexture t = ClipFor(steady).Texture(n, shape);
     const int index = renderer.UploadTexture(t);
     crops[index] = viewer::ReferenceCropOf(t);
     frame_of_texture[index] = n;
-    return texture_of_frame[{n, shape}] = index;
+    return texture_of_frame[{n, shape, steady}] = index;
   }
 
   SourceLabels LabelsFor(int n) {
@@ -190,6 +206,7 @@ Expected<QualityHarness> QualityHarness::Create(const QualityOptions& options) {
                                                          {},
                                                          {},
                                                          {},
+                                                         {},
                                                          {}}));
 }
 
@@ -212,9 +229,9 @@ Expected<FrameEvaluation> QualityHarness::Evaluate(const QualityMethod& method, 
 
   FrameEvaluation e;
   const auto t0 = std::chrono::steady_clock::now();
-  e.frame = method.build(s.clip, k, s.camera, *viewer_from_world,
-                         [&s, &method](int n) { return s.TextureFor(n, method.shape); },
-                         history);
+  e.frame = method.build(
+      s.ClipFor(method.steady), k, s.camera, *viewer_from_world,
+      [&s, &method](int n) { return s.TextureFor(n, method.shape, method.steady); }, history);
   e.rendered = s.renderer.Render(e.frame.draw);
   e.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   REENACT_CHECK(e.frame.cylinder_parts.size() == e.frame.draw.cylinders.size(),

@@ -8,11 +8,11 @@ namespace {
 using viewer::TextureSelection;
 using viewer::TexturingOptions;
 
-// The thesis's pose (the stored skeleton) or the steady track's, drawn with `texturing`;
-// cylinders only.
+// The thesis's pose (the stored skeleton) or, on the steady clip, the steady track's, drawn
+// with `texturing`; cylinders only.
 QualityMethod Method(std::string name, std::string summary, bool steady,
                      const TexturingOptions& texturing) {
-  QualityMethod method{std::move(name), std::move(summary), {}, texturing.shape};
+  QualityMethod method{std::move(name), std::move(summary), {}, texturing.shape, steady};
   method.build = [steady, texturing](const viewer::Reenactment& clip, int k,
                                      const PinholeCamera& camera,
                                      const Eigen::Isometry3d& viewer_from_world,
@@ -44,8 +44,9 @@ const std::vector<QualityMethod>& QualityMethods() {
           "thesis + steady motion: the posed skeleton from the clip's steady track (skeletons the "
           "capture flagged interpolated across from their neighbours, every joint One Euro "
           "filtered: min cutoff 1 Hz, beta 8 Hz per m/s, derivative cutoff 1 Hz, "
-          "forward and backward; common/filter/steady_motion.h); selection and mapping as the "
-          "thesis",
+          "forward and backward; common/filter/steady_motion.h), and every stored frame's "
+          "skeleton from it as well, so that the pose shown and the frames it is textured from "
+          "agree; selection and mapping as the thesis",
           true, {}),
       Method("per-part",
              "thesis + per-part selection: each body part textured from its own best stored frame, "

@@ -32,6 +32,9 @@ struct QualityMethod {
   // The body shape the method draws (its TexturingOptions::shape): its stored textures carry
   // part-label maps of that shape.
   viewer::BodyShape shape = viewer::BodyShape::kCylinders;
+  // The method poses from the steady track and is given the clip with steady_motion on (its
+  // stored frames on the steady track too; reenactment.h).
+  bool steady = false;
 };
 
 // Every method, in the order tables list them.

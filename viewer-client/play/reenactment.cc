@@ -89,15 +89,29 @@ Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFr
   options_.Check();
   REENACT_CHECK(static_cast<int64_t>(frames_.size()) == manifest_.frame_count,
                 "frame count disagrees with the manifest");
+  std::vector<Skeleton> in_world;
+  std::vector<double> times;
+  std::unique_ptr<bool[]> flagged = std::make_unique<bool[]>(frames_.size());
+  for (size_t n = 0; n < frames_.size(); ++n) {
+    in_world.push_back(frames_[n].skeleton_in_world);
+    times.push_back(frames_[n].timestamp_s);
+    flagged[n] = false;
+  }
+  for (int64_t n : manifest_.flagged_skeleton_frames)
+    if (n >= 0 && n < manifest_.frame_count) flagged[n] = true;
+  steady_in_world_ = SteadySkeletonTrack(
+      in_world, times, std::span<const bool>(flagged.get(), frames_.size()), options_.steady);
+  if (options_.steady_motion)
+    for (size_t n = 0; n < frames_.size(); ++n)
+      if (!flagged[n]) frames_[n].skeleton_in_world = steady_in_world_[n];
+
   usable_ = std::make_unique<bool[]>(frames_.size());
   for (size_t n = 0; n < frames_.size(); ++n) {
     const proto::ClipFrame& f = frames_[n];
     skeletons_in_sensor_.push_back(f.skeleton_in_world.Transformed(f.world_from_sensor.inverse()));
-    usable_[n] =
-        std::any_of(f.mask.data.begin(), f.mask.data.end(), [](uint8_t v) { return v > 127; });
+    usable_[n] = !flagged[n] && std::any_of(f.mask.data.begin(), f.mask.data.end(),
+                                            [](uint8_t v) { return v > 127; });
   }
-  for (int64_t n : manifest_.flagged_skeleton_frames)
-    if (n >= 0 && n < manifest_.frame_count) usable_[n] = false;
   texture_index_ =
       TextureIndex(skeletons_in_sensor_, std::span<const bool>(usable_.get(), frames_.size()));
   part_allowed_.assign(frames_.size(), 0);
@@ -149,19 +163,6 @@ Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFr
                        {}, &light_samples);
   }
   subject_light_ = FitSubjectLight(light_samples);
-
-  std::vector<Skeleton> in_world;
-  std::vector<double> times;
-  std::unique_ptr<bool[]> flagged = std::make_unique<bool[]>(frames_.size());
-  for (size_t n = 0; n < frames_.size(); ++n) {
-    in_world.push_back(frames_[n].skeleton_in_world);
-    times.push_back(frames_[n].timestamp_s);
-    flagged[n] = false;
-  }
-  for (int64_t n : manifest_.flagged_skeleton_frames)
-    if (n >= 0 && n < manifest_.frame_count) flagged[n] = true;
-  steady_in_world_ = SteadySkeletonTrack(
-      in_world, times, std::span<const bool>(flagged.get(), frames_.size()), options_.steady);
 
   // The clip's own texturing's coverage now, so that the first frame drawn does not wait for it.
   if (options_.texturing.fallback_candidates > 0) CoverageIndexOf(options_.texturing.shape);

@@ -5,8 +5,12 @@
 // (Eq. 6-16), producing the renderer's draw list.
 // Option steady_motion (issue 9, default off): the posed skeleton S'_k is taken from the
 // steady track (common/filter/steady_motion.h: flagged skeletons interpolated across, joints
-// One Euro filtered over the frames' timestamps) instead of the stored one; texture selection
-// still ranks the stored, unflagged skeletons.
+// One Euro filtered over the frames' timestamps) instead of the stored one, and so is every
+// unflagged stored frame's own skeleton S'_n wherever the clip uses it (selection, the mapping
+// onto the frame, its part-label maps, the shape and light fits at load): the pose shown and
+// the frames it is textured from then agree, so at the sensor's own view frame k still maps
+// onto itself, and a tracker's jitter leaves the stored mapping as well as the pose. Flagged
+// frames keep their skeletons and stay out of texturing.
 // Texturing (issue 9, TexturingOptions; default the thesis): the stored frames may be chosen
 // per body part (common/texture/part_selection.h) with a few ranked candidates per part,
 // drawn by the renderer's occlusion-aware or blending modes (common/render/texturing.h),
@@ -83,7 +87,7 @@ struct TexturingOptions {
 };
 
 struct ReenactmentOptions {
-  bool steady_motion = false;  // pose from the steady track (see above)
+  bool steady_motion = false;  // pose and stored frames from the steady track (see above)
   SteadyMotionOptions steady;  // how the steady track is made
   TexturingOptions texturing;  // used by Build
 
@@ -101,6 +105,7 @@ class Reenactment {
 
   int frame_count() const { return static_cast<int>(frames_.size()); }
   const proto::ClipManifest& manifest() const { return manifest_; }
+  // Frame n as stored, its skeleton the steady one under steady_motion (unless flagged).
   const proto::ClipFrame& frame(int n) const { return frames_.at(n); }
 
   // Mean waist position over the clip (world frame): the centre the orbit camera turns about.
