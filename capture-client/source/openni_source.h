@@ -28,6 +28,10 @@
 // Kinect data mirrored by default, and a device may refuse to switch mirroring off) are
 // flipped back, so that images follow the OpenCV camera model (x right, y down).
 //
+// Teardown stops the streams, destroys them, then closes the device. OpenNI2's recording
+// player walks its stream list on its own thread without a lock, so this can, rarely, crash
+// in the driver; no order of OpenNI2's public calls avoids it (docs/decisions.md, Capture).
+//
 // Intrinsics from the field of view (OpenNI2 reports it per stream, in radians):
 //   fx = W / (2 tan(hfov / 2)),  fy = H / (2 tan(vfov / 2)),
 //   cx = (W - 1) / 2,            cy = (H - 1) / 2,            no distortion.

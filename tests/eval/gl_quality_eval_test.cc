@@ -191,6 +191,57 @@ TEST(GlQualityEval, TrackedSkeletonsAreTheDepthTrackersWithinTheIssuesBound) {
   EXPECT_GT(e->comparison.psnr_db, EmptyImagePsnr(e->truth));
 }
 
+TEST(GlQualityEval, FramesTheTrackerLosesAreLeftOutAndTheRestComparedAtTheirOwnTime) {
+  // On CesiumMan's walk-handheld our tracker loses a few frames (docs/measurements.md), and
+  // the recorder stores no frame without a skeleton. Clip frame n must then be compared with
+  // the scene frame it was recorded from, not with scene frame n: the subject walks about
+  // 1.2 m/s, so a clip that is a frame or more behind the scene puts every joint 4 cm or more
+  // off, well above a track that follows the truth.
+  const fs::path glb = fs::path(__FILE__).parent_path().parent_path().parent_path().parent_path() /
+                       "shared" / "data" / "models" / "CesiumMan.glb";
+  if (!fs::exists(glb)) GTEST_SKIP() << glb << " not present";
+  QualityOptions options;
+  options.scenario = "walk-handheld";
+  options.body = glb.string();
+  options.tracked_skeletons = true;
+  options.views_deg = {0};
+  auto h = QualityHarness::Create(options);
+  ASSERT_TRUE(h.ok()) << h.error().message;
+  const int clip_frames = h->clip().frame_count();
+  ASSERT_LT(clip_frames, h->scene().frame_count()) << "no frame lost: pick another scenario";
+  auto joint_error = [&h](int n, int scene_frame) {
+    const Skeleton truth = h->scene().skeleton_in_world(scene_frame);
+    double sum = 0;
+    for (int j = 0; j < kJointCount; ++j)
+      sum += (h->clip().frame(n).skeleton_in_world.position[j] - truth.position[j]).norm();
+    return sum / kJointCount;
+  };
+  double mapped = 0, shifted = 0;
+  int after_loss = 0;
+  for (int n = 0; n < clip_frames; ++n) {
+    const int scene_frame = h->SceneFrame(n);
+    ASSERT_GE(scene_frame, n);
+    if (n > 0) {
+      ASSERT_GT(scene_frame, h->SceneFrame(n - 1));
+    }
+    EXPECT_NEAR(h->clip().frame(n).timestamp_s * h->scene().frame_rate_hz(), scene_frame, 1e-6);
+    if (scene_frame == n) continue;
+    mapped += joint_error(n, scene_frame);
+    shifted += joint_error(n, n);
+    ++after_loss;
+  }
+  ASSERT_GT(after_loss, 0);
+  // The tracker's error on that row is 10-12 cm over the clip, more in its last part, where an
+  // arm drifts (issue 8); the shifted comparison adds the walk's displacement to it, at least
+  // 4 cm a frame.
+  EXPECT_LT(mapped / after_loss, 0.20);
+  EXPECT_GT(shifted / after_loss, mapped / after_loss + 0.04);
+  // The last clip frame is evaluated against the scene's own frame of that time.
+  const auto e = h->Evaluate(Thesis(), 0, clip_frames - 1);
+  ASSERT_TRUE(e.ok()) << e.error().message;
+  EXPECT_GT(e->comparison.iou, 0.5);
+}
+
 TEST(GlQualityEval, ImagePairBeyondTheClipIsRefused) {
   QualityOptions options = ShortRun();
   options.views_deg = {0};

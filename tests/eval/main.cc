@@ -26,9 +26,10 @@ constexpr const char* kUsage =
     "      ground truth | reenactment | error pictures (default pairs: the middle frame at\n"
     "      every view); --skeleton-noise: Gaussian jitter (metres per axis) on the recorded\n"
     "      skeletons, as a tracker's (default 0: exact); --skeletons track: the recorded\n"
-    "      skeletons from our depth tracker (default truth); --lighting flat: the subject\n"
-    "      lit flat in recording and truth (no shading to carry between poses; default\n"
-    "      scene)\n"
+    "      skeletons from our depth tracker (default truth; a frame it loses is not in\n"
+    "      the clip, and frame numbers count the clip's frames); --lighting flat: the\n"
+    "      subject lit flat in recording and truth (no shading to carry between poses;\n"
+    "      default scene)\n"
     "  reenact-eval segment [--scenario S[,S...]] [--step K] [--json FILE] [--noise on|off]\n"
     "      person segmentation against the synthetic ground-truth mask (default\n"
     "      turn-and-kick, every frame, Kinect-like depth noise on): IoU and ms per frame\n"
@@ -69,6 +70,8 @@ int Quality(const CommandLine& cl) {
   if (!run.ok()) return Fail(run.error());
 
   const Status printed = eval::QualityReport(*run).Print(command->json_path);
+  if (const std::string lost = eval::LostFramesNote(*run); !lost.empty())
+    std::cout << "Clip: " << run->clip_frames << " frames; " << lost << ".\n";
   std::cout << eval::SubjectLightLine(*run) << "\n";
   for (const std::string& rule : eval::QualityRules()) std::cout << rule << "\n";
   for (const eval::QualityImage& image : run->images) std::cout << "wrote " << image.path << "\n";

@@ -59,8 +59,10 @@ struct QualityOptions {
   double skeleton_noise_m = 0;
   // The recorded skeletons from our depth tracker (capture-client/tracker/) reading each
   // rendered depth frame, as a sensor without NiTE records them, instead of the scene's exact
-  // ones; the ground truth stays exact. Not with skeleton_noise_m. The tracker must give a
-  // skeleton on every frame (the recorder stores only frames with one), else Create fails.
+  // ones; the ground truth stays exact. Not with skeleton_noise_m. The recorder stores only
+  // frames with a skeleton, so a frame the tracker loses is not in the clip: output frame k is
+  // the clip's k-th and is compared with the scene at that frame's time
+  // (QualityHarness::SceneFrame), as a viewer plays such a clip.
   bool tracked_skeletons = false;
   // The subject lit flat (SyntheticBodySpec::ambient 1, no directional light) in the recording
   // and in the ground truth alike: no shading for texturing to carry from one pose to
@@ -118,6 +120,7 @@ struct QualityRun {
   std::vector<QualityRow> rows;  // per method, then view
   std::vector<QualityImage> images;
   int clip_frames = 0;      // frames captured
+  int scene_frames = 0;     // the scenario's frames: more than clip_frames where one was lost
   std::string gl_renderer;  // GL_RENDERER of the headless context
   // The clip's subject light as fitted at load (viewer::Reenactment::subject_light()) and the
   // scene's true one in the same form (common/texture/subject_light.h: world frame, strength
@@ -143,7 +146,8 @@ class QualityHarness {
  public:
   // Captures options.scenario (record + read back, in a temporary directory) and opens the
   // headless renderer. Errors: unknown scenario ("not_found", listing the known ones),
-  // recording failures, "gl_unavailable".
+  // recording failures, "tracking" (--skeletons track: the tracker found no one),
+  // "internal" (a clip frame's timestamp is not one of the scene's frames), "gl_unavailable".
   static Expected<QualityHarness> Create(const QualityOptions& options);
 
   QualityHarness(QualityHarness&&) noexcept;
@@ -154,6 +158,9 @@ class QualityHarness {
   const capture::SyntheticScene& scene() const;
   const PinholeCamera& camera() const;  // the viewer camera (options' size)
   const std::string& gl_renderer() const;
+  // The scene frame that clip frame n (0 <= n < clip().frame_count(), CHECK) was recorded
+  // from, found from its timestamp: n itself unless the tracker lost an earlier frame.
+  int SceneFrame(int n) const;
 
   // The orbit camera's viewer_from_world at that angle; error "degenerate" if it cannot be
   // placed.

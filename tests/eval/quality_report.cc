@@ -110,6 +110,14 @@ std::vector<std::string> QualityRules() {
   };
 }
 
+std::string LostFramesNote(const QualityRun& run) {
+  if (run.scene_frames <= run.clip_frames) return "";
+  return "the tracker lost " + std::to_string(run.scene_frames - run.clip_frames) +
+         " of the scenario's " + std::to_string(run.scene_frames) +
+         " frames; the recorder stores no frame without a skeleton, so those are not "
+         "reenacted, and each output frame is compared with the scene at its own time";
+}
+
 std::string SubjectLightLine(const QualityRun& run) {
   const SubjectLightFit& fit = run.subject_light;
   const double true_strength = run.true_subject_light.norm();
@@ -183,6 +191,7 @@ std::string QualityMarkdown(const QualityOptions& options, const QualityRun& run
      << (options.tracked_skeletons
              ? ", the recorded skeletons from our depth tracker (the ground truth exact)"
              : std::string())
+     << (LostFramesNote(run).empty() ? "" : " (" + LostFramesNote(run) + ")")
      << (options.flat_lighting ? ", the subject lit flat (no shading) in recording and truth"
                                : std::string())
      << "; " << EveryKth(options.frame_step) << " is reenacted at " << options.width << "x"

@@ -19,6 +19,10 @@ proto::Report QualityReport(const QualityRun& run);
 // timing), printed under the table and written into the markdown.
 std::vector<std::string> QualityRules();
 
+// Why the clip has fewer frames than the scenario (the tracker lost some), as a clause; empty
+// when it has them all.
+std::string LostFramesNote(const QualityRun& run);
+
 // One sentence on the fitted subject light against the scene's: strength, the angle between
 // them, the fit's gain; or why none was found.
 std::string SubjectLightLine(const QualityRun& run);

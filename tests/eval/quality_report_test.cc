@@ -89,6 +89,14 @@ TEST(QualityReport, MarkdownSaysWhereTheSkeletonsCameFrom) {
   const std::string md = QualityMarkdown(options, TwoRows(), "docs/quality.md", "MACHINE");
   EXPECT_NE(md.find("--step 10 --skeletons track"), std::string::npos) << md;
   EXPECT_NE(md.find("the recorded skeletons from our depth tracker"), std::string::npos) << md;
+  EXPECT_EQ(md.find("lost"), std::string::npos) << md;  // every frame tracked
+  QualityRun lossy = TwoRows();
+  lossy.clip_frames = 219;
+  lossy.scene_frames = 225;
+  const std::string lost = QualityMarkdown(options, lossy, "docs/quality.md", "MACHINE");
+  EXPECT_NE(lost.find("219 frames recorded"), std::string::npos) << lost;
+  EXPECT_NE(lost.find("the tracker lost 6 of the scenario's 225 frames"), std::string::npos)
+      << lost;
   options.tracked_skeletons = false;
   const std::string exact = QualityMarkdown(options, TwoRows(), "docs/quality.md", "MACHINE");
   EXPECT_EQ(exact.find("--skeletons"), std::string::npos);
