@@ -46,7 +46,8 @@ constexpr const char* kUsage =
     "  reenact-eval tracker [--scenario S[,S...]] [--variants normal,fast,near]\n"
     "                       [--iterations N,...] [--subsample K,...]\n"
     "                       [--body FILE.glb|procedural] [--limb-recheck N]\n"
-    "                       [--turn-starts DEG] [--noise on|off] [--json FILE]\n"
+    "                       [--turn-starts DEG] [--noise on|off] [--seeds N,...]\n"
+    "                       [--json FILE]\n"
     "      the depth skeleton tracker against the synthetic ground-truth skeleton (default\n"
     "      turn-and-kick,walk-handheld; bvh:FILE plays on --body, default CesiumMan; an\n"
     "      explicit --body plays every scenario on it, --body procedural on the procedural\n"
@@ -59,7 +60,8 @@ constexpr const char* kUsage =
     "      --limb-recheck N: every frame one limb in turn re-fitted from its N best\n"
     "      re-posings (default 0: off; 3 measured); --turn-starts DEG: every frame the\n"
     "      fit also started from the prediction turned by -DEG and +DEG about up, the\n"
-    "      cheapest kept (default 25; 0: off)\n";
+    "      cheapest kept (default 25; 0: off); --seeds: one run per scene seed (the depth\n"
+    "      noise; default 1), with their mean, least and largest MPJPE per setting\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-eval", e); }
 

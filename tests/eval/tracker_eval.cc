@@ -111,6 +111,7 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
   row.variant = variant;
   row.iterations = iterations;
   row.subsample = subsample;
+  row.seed = static_cast<int>(scene.seed());
   std::vector<double> errors, aligned_errors, headings, ms, cpu;
   std::optional<CalibrationAlignment> alignment;
   const Eigen::Vector3d world_up = scene.world_up();
@@ -191,60 +192,88 @@ Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& o) {
   for (const std::string& v : o.variants)
     if (v != "normal" && v != "fast" && v != "near")
       return MakeError("usage", "unknown variant '" + v + "' (normal, fast or near)");
+  if (o.seeds.empty() || *std::min_element(o.seeds.begin(), o.seeds.end()) < 1)
+    return MakeError("usage", "seeds: give at least one, each at least 1");
   TrackerEvalRun run;
-  for (const std::string& name : o.scenarios) {
-    capture::SyntheticBodySpec body;
-    if (o.body_for_all || name.rfind("bvh:", 0) == 0) body.gltf_path = o.body_path;
-    auto scene = capture::SyntheticScene::Create(name, o.seed, body);
-    if (!scene.ok()) return scene.error();
-    for (const std::string& variant : o.variants)
-      for (size_t i = 0; i < o.iterations.size(); ++i)
-        for (size_t k = 0; k < o.subsample.size(); ++k) {
-          std::map<std::string, CaseSum> cases;
-          JointErrorTable joints;
-          ConfidenceErrorTable confidence;
-          auto row = RunOne(*scene, variant, o.iterations[i], o.subsample[k], o, &cases, &joints,
-                            &confidence);
-          if (!row.ok()) return row.error();
-          run.rows.push_back(*row);
-          const auto stats = joints.Stats();
-          for (int j = 0; j < kJointCount; ++j)
-            run.joints.push_back(
-                {name, variant, o.iterations[i], o.subsample[k], static_cast<Joint>(j), stats[j]});
-          const auto bins = confidence.Stats();
-          for (int b = 0; b < kConfidenceBinCount; ++b)
-            run.confidence.push_back({name, variant, o.iterations[i], o.subsample[k], b, bins[b]});
-          for (const char* name_case : kCases) {
-            const auto it = cases.find(name_case);
-            if (it == cases.end()) continue;
-            TrackerCaseRow c;
-            c.scenario = name;
-            c.variant = variant;
-            c.hard_case = name_case;
-            c.iterations = o.iterations[i];
-            c.subsample = o.subsample[k];
-            c.frames = it->second.frames;
-            c.tracked = it->second.tracked;
-            c.tracked_rate = c.frames ? static_cast<double>(c.tracked) / c.frames : 0;
-            c.mpjpe_cm = c.tracked ? 100 * it->second.err / c.tracked : 0;
-            run.cases.push_back(c);
+  for (const std::string& name : o.scenarios)
+    for (const int seed : o.seeds) {
+      capture::SyntheticBodySpec body;
+      if (o.body_for_all || name.rfind("bvh:", 0) == 0) body.gltf_path = o.body_path;
+      auto scene = capture::SyntheticScene::Create(name, static_cast<uint64_t>(seed), body);
+      if (!scene.ok()) return scene.error();
+      for (const std::string& variant : o.variants)
+        for (const int iterations : o.iterations)
+          for (const int subsample : o.subsample) {
+            std::map<std::string, CaseSum> cases;
+            JointErrorTable joints;
+            ConfidenceErrorTable confidence;
+            auto row =
+                RunOne(*scene, variant, iterations, subsample, o, &cases, &joints, &confidence);
+            if (!row.ok()) return row.error();
+            run.rows.push_back(*row);
+            const auto stats = joints.Stats();
+            for (int j = 0; j < kJointCount; ++j)
+              run.joints.push_back(
+                  {name, variant, iterations, subsample, seed, static_cast<Joint>(j), stats[j]});
+            const auto bins = confidence.Stats();
+            for (int b = 0; b < kConfidenceBinCount; ++b)
+              run.confidence.push_back({name, variant, iterations, subsample, seed, b, bins[b]});
+            for (const char* name_case : kCases) {
+              const auto it = cases.find(name_case);
+              if (it == cases.end()) continue;
+              TrackerCaseRow c;
+              c.scenario = name;
+              c.variant = variant;
+              c.hard_case = name_case;
+              c.iterations = iterations;
+              c.subsample = subsample;
+              c.seed = seed;
+              c.frames = it->second.frames;
+              c.tracked = it->second.tracked;
+              c.tracked_rate = c.frames ? static_cast<double>(c.tracked) / c.frames : 0;
+              c.mpjpe_cm = c.tracked ? 100 * it->second.err / c.tracked : 0;
+              run.cases.push_back(c);
+            }
           }
-        }
-  }
+    }
   return run;
+}
+
+std::vector<TrackerSeedSummary> SummariseSeeds(const std::vector<TrackerEvalRow>& rows) {
+  std::vector<TrackerSeedSummary> out;
+  for (const TrackerEvalRow& r : rows) {
+    auto it = std::find_if(out.begin(), out.end(), [&r](const TrackerSeedSummary& s) {
+      return s.scenario == r.scenario && s.variant == r.variant && s.iterations == r.iterations &&
+             s.subsample == r.subsample;
+    });
+    if (it == out.end()) {
+      it = out.insert(out.end(), {r.scenario, r.variant, r.iterations, r.subsample, 0, 0,
+                                  r.mpjpe_cm, r.mpjpe_cm, 0, 0});
+    }
+    ++it->seeds;
+    it->mpjpe_cm += r.mpjpe_cm;
+    it->min_mpjpe_cm = std::min(it->min_mpjpe_cm, r.mpjpe_cm);
+    it->max_mpjpe_cm = std::max(it->max_mpjpe_cm, r.mpjpe_cm);
+    it->p90_cm += r.p90_cm;
+    it->tracked_rate += r.tracked_rate;
+  }
+  for (TrackerSeedSummary& s : out)
+    for (double* mean : {&s.mpjpe_cm, &s.p90_cm, &s.tracked_rate}) *mean /= s.seeds;
+  return out;
 }
 
 namespace {
 
 // A row of `table` ("" the main one) opening with its run's setting.
-proto::ReportRow SettingRow(std::string table, const std::string& scenario,
-                            const std::string& variant, int iterations, int subsample) {
+template <typename Row>
+proto::ReportRow SettingRow(std::string table, const Row& r) {
   proto::ReportRow row;
   row.table = std::move(table);
-  row.Add("scenario", scenario)
-      .Add("variant", variant)
-      .Add("iterations", static_cast<long long>(iterations))
-      .Add("subsample", static_cast<long long>(subsample));
+  row.Add("scenario", r.scenario)
+      .Add("variant", r.variant)
+      .Add("iterations", static_cast<long long>(r.iterations))
+      .Add("subsample", static_cast<long long>(r.subsample))
+      .Add("seed", static_cast<long long>(r.seed));
   return row;
 }
 
@@ -254,7 +283,7 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
   proto::Report report;
   report.command = "tracker";
   for (const TrackerEvalRow& r : run.rows) {
-    proto::ReportRow row = SettingRow("", r.scenario, r.variant, r.iterations, r.subsample);
+    proto::ReportRow row = SettingRow("", r);
     row.Add("n", static_cast<long long>(r.frames))
         .Add("tracked_rate", r.tracked_rate)
         .Add("mpjpe_cm", r.mpjpe_cm)
@@ -269,7 +298,7 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
     report.rows.push_back(std::move(row));
   }
   for (const TrackerCaseRow& c : run.cases) {
-    proto::ReportRow row = SettingRow("cases", c.scenario, c.variant, c.iterations, c.subsample);
+    proto::ReportRow row = SettingRow("cases", c);
     row.Add("case", c.hard_case)
         .Add("n", static_cast<long long>(c.frames))
         .Add("tracked_rate", c.tracked_rate)
@@ -277,7 +306,7 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
     report.rows.push_back(std::move(row));
   }
   for (const TrackerJointRow& j : run.joints) {
-    proto::ReportRow row = SettingRow("joints", j.scenario, j.variant, j.iterations, j.subsample);
+    proto::ReportRow row = SettingRow("joints", j);
     row.Add("joint", std::string(JointName(j.joint)))
         .Add("n", static_cast<long long>(j.stats.frames))
         .Add("mean_cm", j.stats.mean_cm)
@@ -289,8 +318,7 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
     report.rows.push_back(std::move(row));
   }
   for (const TrackerConfidenceRow& c : run.confidence) {
-    proto::ReportRow row =
-        SettingRow("confidence", c.scenario, c.variant, c.iterations, c.subsample);
+    proto::ReportRow row = SettingRow("confidence", c);
     row.Add("confidence", std::string(ConfidenceErrorTable::BinName(c.bin)))
         .Add("n", static_cast<long long>(c.stats.n))
         .Add("share", c.stats.share)
@@ -298,12 +326,29 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
         .Add("gross_share", c.stats.gross_share);
     report.rows.push_back(std::move(row));
   }
+  const std::vector<TrackerSeedSummary> seeds = SummariseSeeds(run.rows);
+  if (seeds.size() < run.rows.size())
+    for (const TrackerSeedSummary& s : seeds) {
+      proto::ReportRow row;
+      row.table = "seeds";
+      row.Add("scenario", s.scenario)
+          .Add("variant", s.variant)
+          .Add("iterations", static_cast<long long>(s.iterations))
+          .Add("subsample", static_cast<long long>(s.subsample))
+          .Add("seeds", static_cast<long long>(s.seeds))
+          .Add("mpjpe_cm", s.mpjpe_cm)
+          .Add("min_mpjpe_cm", s.min_mpjpe_cm)
+          .Add("max_mpjpe_cm", s.max_mpjpe_cm)
+          .Add("p90_cm", s.p90_cm)
+          .Add("tracked_rate", s.tracked_rate);
+      report.rows.push_back(std::move(row));
+    }
   return report;
 }
 
 std::set<std::string> TrackerFlags() {
   return {"scenario",     "variants",    "iterations", "subsample", "body",
-          "limb-recheck", "turn-starts", "noise",      "json"};
+          "limb-recheck", "turn-starts", "noise",      "seeds",     "json"};
 }
 
 namespace {
@@ -403,6 +448,13 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
     if (*noise != "on" && *noise != "off")
       return MakeError("usage", "--noise must be on or off, got '" + *noise + "'");
     o.depth_noise = *noise == "on";
+  }
+  if (auto text = cl.Get("seeds")) {
+    auto list = ParseCounts("seeds", *text);
+    if (!list.ok()) return list.error();
+    if (std::set<int>(list->begin(), list->end()).size() != list->size())
+      return MakeError("usage", "--seeds: a seed given twice in '" + *text + "'");
+    o.seeds = *list;
   }
   if (auto path = cl.Get("json")) {
     if (Status s = CheckWritableFile("json", *path); !s.ok()) return s.error();

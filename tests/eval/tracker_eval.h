@@ -5,8 +5,12 @@
 //   reenact-eval tracker [--scenario S[,S...]] [--variants V[,V...]] [--iterations N[,N...]]
 //                        [--subsample K[,K...]] [--body FILE.glb|procedural]
 //                        [--limb-recheck N] [--turn-starts DEG] [--noise on|off]
-//                        [--json FILE]
+//                        [--seeds N[,N...]] [--json FILE]
 //
+// --seeds: the scene's seeds, each a run of its own (default 1): the seed draws the depth
+// noise (and walk-handheld's hand shake), and a tracker fits every frame from the last one,
+// so a change that moves one frame's fit by a little can send a whole row another way; the
+// mean over seeds tells a change's effect from that chance.
 // --limb-recheck N: the tracker's limb re-check with N hypotheses, 0 = off
 // (SkeletonTrackerOptions::limb_recheck_hypotheses, default 0; see docs/measurements.md).
 // --turn-starts DEG: the tracker's turned starts, +-DEG degrees about up, 0 = off
@@ -83,14 +87,14 @@ struct TrackerEvalOptions {
   std::string body_path = "../shared/data/models/CesiumMan.glb";
   bool body_for_all = false;  // every scenario on body_path (set by --body), not only bvh:
   bool depth_noise = true;
-  uint64_t seed = 1;
+  std::vector<int> seeds{1};  // each >= 1: the scene's seed, one run per seed
   int max_frames = -1;  // frames per run at most (-1: all); for tests
   capture::SkeletonTrackerOptions tracker;
 };
 
 struct TrackerEvalRow {
   std::string scenario, variant;
-  int iterations = 0, subsample = 0;
+  int iterations = 0, subsample = 0, seed = 1;
   int frames = 0, tracked = 0;
   double tracked_rate = 0, mpjpe_cm = 0, p90_cm = 0;
   double heading_deg = 0, reversed_rate = 0;  // see the header comment
@@ -102,23 +106,32 @@ struct TrackerEvalRow {
 
 struct TrackerCaseRow {
   std::string scenario, variant, hard_case;
-  int iterations = 0, subsample = 0;
+  int iterations = 0, subsample = 0, seed = 1;
   int frames = 0, tracked = 0;
   double tracked_rate = 0, mpjpe_cm = 0;
 };
 
 struct TrackerJointRow {
   std::string scenario, variant;
-  int iterations = 0, subsample = 0;
+  int iterations = 0, subsample = 0, seed = 1;
   Joint joint = Joint::kHead;
   JointErrorStats stats;
 };
 
 struct TrackerConfidenceRow {
   std::string scenario, variant;
-  int iterations = 0, subsample = 0;
+  int iterations = 0, subsample = 0, seed = 1;
   int bin = 0;  // ConfidenceErrorTable's bin
   ConfidenceBinStats stats;
+};
+
+// One setting (scenario, variant, iterations, subsample) over its seeds: the mean, least and
+// largest of the rows' mpjpe_cm, and the means of p90_cm and tracked_rate.
+struct TrackerSeedSummary {
+  std::string scenario, variant;
+  int iterations = 0, subsample = 0;
+  int seeds = 0;
+  double mpjpe_cm = 0, min_mpjpe_cm = 0, max_mpjpe_cm = 0, p90_cm = 0, tracked_rate = 0;
 };
 
 struct TrackerEvalRun {
@@ -128,17 +141,21 @@ struct TrackerEvalRun {
   std::vector<TrackerConfidenceRow> confidence;  // kConfidenceBinCount per row, in bin order
 };
 
-// Errors: "not_found" for an unknown scenario; "usage" for an unknown variant; the scene's
-// errors for a bvh: file or body that cannot be used.
+// The rows' settings over their seeds, in the order each setting first appears.
+std::vector<TrackerSeedSummary> SummariseSeeds(const std::vector<TrackerEvalRow>& rows);
+
+// Errors: "not_found" for an unknown scenario; "usage" for an unknown variant, no seed or a
+// seed below 1; the scene's errors for a bvh: file or body that cannot be used.
 Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& options);
 
-// Tables and --json rows (command "tracker"): the main table (scenario, variant, iterations,
-// subsample, n, tracked_rate, mpjpe_cm, p90_cm, calib_frame, losses, recoveries,
-// ms_per_frame, cpu_ms_per_frame) and the table "cases" (scenario, variant, iterations,
-// subsample, case, n, tracked_rate, mpjpe_cm) and the table "joints" (scenario, variant,
-// iterations, subsample, joint, n, mean_cm, bias_x_cm, bias_y_cm, bias_z_cm, bias_cm,
-// spread_cm) and the table "confidence" (scenario, variant, iterations, subsample, confidence,
-// n, share, mean_cm, gross_share).
+// Tables and --json rows (command "tracker"), each opening with the setting (scenario,
+// variant, iterations, subsample, seed): the main table (n, tracked_rate, mpjpe_cm, p90_cm,
+// calib_frame, losses, recoveries, ms_per_frame, cpu_ms_per_frame) and the table "cases"
+// (case, n, tracked_rate, mpjpe_cm) and the table "joints" (joint, n, mean_cm, bias_x_cm,
+// bias_y_cm, bias_z_cm, bias_cm, spread_cm) and the table "confidence" (confidence, n, share,
+// mean_cm, gross_share); with more than one seed, the table "seeds" (SummariseSeeds: scenario,
+// variant, iterations, subsample, seeds, mpjpe_cm, min_mpjpe_cm, max_mpjpe_cm, p90_cm,
+// tracked_rate).
 proto::Report TrackerReport(const TrackerEvalRun& run);
 
 struct TrackerCommand {
@@ -151,8 +168,8 @@ std::set<std::string> TrackerFlags();
 // --body procedural: every scenario on the procedural body (body_path empty, body_for_all).
 // Errors (code "usage", naming the flag): empty lists or names, numbers that are not whole
 // numbers >= 1, an unknown variant, --limb-recheck other than one number from 0 to 26,
-// --turn-starts other than one number from 0 to 89, --noise other than on or off; ("io") an
-// unwritable --json.
+// --turn-starts other than one number from 0 to 89, --noise other than on or off, --seeds
+// other than whole numbers from 1 to 1000 without repeats; ("io") an unwritable --json.
 Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& command_line);
 
 }  // namespace reenact::eval

@@ -44,6 +44,7 @@ TEST(TrackerCli, Defaults) {
   EXPECT_EQ(r->options.tracker.limb_recheck_hypotheses,
             capture::SkeletonTrackerOptions{}.limb_recheck_hypotheses);
   EXPECT_EQ(r->options.tracker.turn_start_deg, capture::SkeletonTrackerOptions{}.turn_start_deg);
+  EXPECT_EQ(r->options.seeds, std::vector<int>{1});
   EXPECT_FALSE(r->json_path);
 }
 
@@ -67,6 +68,7 @@ TEST(TrackerCli, Flags) {
   ASSERT_TRUE(turns.ok()) << turns.error().message;
   EXPECT_EQ(turns->options.tracker.turn_start_deg, 0);
   EXPECT_EQ(Parse({"--turn-starts", "40"})->options.tracker.turn_start_deg, 40);
+  EXPECT_EQ(Parse({"--seeds", "3,1,2"})->options.seeds, (std::vector<int>{3, 1, 2}));
 }
 
 TEST(TrackerCli, BodyProceduralPlaysEveryScenarioOnTheProceduralBody) {
@@ -97,6 +99,10 @@ TEST(TrackerCli, BadInputIsRefused) {
   ExpectUsage({"--turn-starts", "90"}, "--turn-starts takes one whole number from 0 (off) to 89");
   ExpectUsage({"--turn-starts", "-5"}, "--turn-starts");
   ExpectUsage({"--turn-starts", "12.5"}, "--turn-starts");
+  ExpectUsage({"--seeds", "0"}, "--seeds");
+  ExpectUsage({"--seeds", "1,x"}, "--seeds");
+  ExpectUsage({"--seeds", ""}, "--seeds");
+  ExpectUsage({"--seeds", "2,2"}, "--seeds: a seed given twice");
   const auto json = Parse({"--json", "/nonexistent-folder/out.json"});
   ASSERT_FALSE(json.ok());
   EXPECT_EQ(json.error().code, "io");
@@ -108,6 +114,69 @@ TEST(TrackerEval, UnknownScenarioIsNotFound) {
   const auto run = RunTrackerEval(o);
   ASSERT_FALSE(run.ok());
   EXPECT_EQ(run.error().code, "not_found");
+}
+
+TEST(TrackerEval, NoSeedIsAUsageError) {
+  TrackerEvalOptions o;
+  o.seeds = {};
+  EXPECT_EQ(RunTrackerEval(o).error().code, "usage");
+  o.seeds = {0};
+  EXPECT_EQ(RunTrackerEval(o).error().code, "usage");
+}
+
+TEST(TrackerEval, SeedSummaryAveragesEachSettingOverItsSeeds) {
+  auto row = [](std::string variant, int seed, double mpjpe, double p90, double rate) {
+    TrackerEvalRow r;
+    r.scenario = "turn-and-kick";
+    r.variant = std::move(variant);
+    r.iterations = 8;
+    r.subsample = 2;
+    r.seed = seed;
+    r.mpjpe_cm = mpjpe;
+    r.p90_cm = p90;
+    r.tracked_rate = rate;
+    return r;
+  };
+  const std::vector<TrackerEvalRow> rows = {
+      row("normal", 1, 2.0, 3.0, 1.0), row("near", 1, 4.0, 6.0, 0.5),
+      row("normal", 2, 5.0, 7.0, 0.5), row("normal", 3, 2.0, 2.0, 1.0)};
+  const std::vector<TrackerSeedSummary> s = SummariseSeeds(rows);
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s[0].variant, "normal");
+  EXPECT_EQ(s[0].seeds, 3);
+  EXPECT_DOUBLE_EQ(s[0].mpjpe_cm, 3.0);
+  EXPECT_DOUBLE_EQ(s[0].min_mpjpe_cm, 2.0);
+  EXPECT_DOUBLE_EQ(s[0].max_mpjpe_cm, 5.0);
+  EXPECT_DOUBLE_EQ(s[0].p90_cm, 4.0);
+  EXPECT_DOUBLE_EQ(s[0].tracked_rate, 2.5 / 3);
+  EXPECT_EQ(s[1].variant, "near");
+  EXPECT_EQ(s[1].seeds, 1);
+  EXPECT_DOUBLE_EQ(s[1].mpjpe_cm, 4.0);
+  EXPECT_TRUE(SummariseSeeds({}).empty());
+}
+
+TEST(TrackerEval, EachSeedIsARunOfItsOwnWithItsOwnDepthNoise) {
+  TrackerEvalOptions o;
+  o.scenarios = {"turn-and-kick"};
+  o.seeds = {1, 2};
+  o.max_frames = 5;
+  const auto run = RunTrackerEval(o);
+  ASSERT_TRUE(run.ok()) << run.error().message;
+  ASSERT_EQ(run->rows.size(), 2u);
+  EXPECT_EQ(run->rows[0].seed, 1);
+  EXPECT_EQ(run->rows[1].seed, 2);
+  // Other depth noise, other fits: the same frames give another error.
+  EXPECT_NE(run->rows[0].mpjpe_cm, run->rows[1].mpjpe_cm);
+  for (const TrackerJointRow& j : run->joints) EXPECT_TRUE(j.seed == 1 || j.seed == 2);
+  const proto::Report report = TrackerReport(*run);
+  int seed_rows = 0;
+  for (const proto::ReportRow& r : report.rows) seed_rows += r.table == "seeds";
+  EXPECT_EQ(seed_rows, 1);
+  // One seed: no seeds table.
+  o.seeds = {1};
+  const auto one = RunTrackerEval(o);
+  ASSERT_TRUE(one.ok()) << one.error().message;
+  for (const proto::ReportRow& r : TrackerReport(*one).rows) EXPECT_NE(r.table, "seeds");
 }
 
 TEST(TrackerEval, ShortRunTracksEveryFrameAndWritesTheReport) {
