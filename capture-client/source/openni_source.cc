@@ -130,8 +130,12 @@ struct OpenNiSource::Impl {
   int width = 0, height = 0;
   bool color_mirrored = false, depth_mirrored = false;
   double max_gap_us = 0;
-  // Frames of the recording per stream (0 = unknown), frames read so far.
+  // Frames of the recording per stream: declared (0 = unknown), found by ScanOniFile, read so
+  // far, and the recording's index of the last one read.
   int color_total = 0, depth_total = 0, color_read = 0, depth_read = 0;
+  int color_records = 0, depth_records = 0;
+  int color_last_index = 0, depth_last_index = 0;
+  bool repeating = false;  // the recording is set to repeat (SetUpStreams)
   std::deque<QueuedFrame> color_queue, depth_queue;
   int yielded = 0, dropped = 0;
   DepthPresenceGuard depth_guard{30};
@@ -155,13 +159,23 @@ Status OpenNiSource::Impl::ReadOne(openni::VideoStream& stream, bool is_color) {
   if (stream.readFrame(&ref) != openni::STATUS_OK || !ref.isValid())
     return MakeError("openni", where + ": reading a " + (is_color ? "colour" : "depth") +
                                    " frame failed (" + OpenNiLastError() + ")");
+  const std::string kind = is_color ? "colour" : "depth";
+  int& last_index = is_color ? color_last_index : depth_last_index;
+  const int read = is_color ? color_read : depth_read;
+  if (repeating && read > 0 && ref.getFrameIndex() <= last_index)
+    return MakeError("corrupt",
+                     where + ": the " + kind + " stream's frame " + std::to_string(read + 1) +
+                         " (index " + std::to_string(ref.getFrameIndex()) +
+                         ") does not follow the one before (index " + std::to_string(last_index) +
+                         "): its frames are out of order, or OpenNI2 started the "
+                         "recording over; it is damaged, re-record it");
+  last_index = ref.getFrameIndex();
   const openni::PixelFormat format = ref.getVideoMode().getPixelFormat();
   const int w = ref.getWidth(), h = ref.getHeight();
   if (w <= 0 || h <= 0 || w > width || h > height)
-    return MakeError("corrupt", where + ": a " + std::string(is_color ? "colour" : "depth") +
-                                    " frame of " + std::to_string(w) + "x" + std::to_string(h) +
-                                    " does not fit the stream's " + std::to_string(width) + "x" +
-                                    std::to_string(height));
+    return MakeError("corrupt", where + ": a " + kind + " frame of " + std::to_string(w) + "x" +
+                                    std::to_string(h) + " does not fit the stream's " +
+                                    std::to_string(width) + "x" + std::to_string(height));
   void* data = const_cast<void*>(ref.getData());
   const size_t stride = static_cast<size_t>(ref.getStrideInBytes());
   const size_t bytes = static_cast<size_t>(ref.getDataSize());
@@ -404,6 +418,17 @@ Status SetUpStreams(OpenNiSource::Impl& impl, const std::string& registration_no
     impl.info.frame_count = impl.color_total > 0 && impl.depth_total > 0
                                 ? std::min(impl.color_total, impl.depth_total)
                                 : -1;
+    // Played to its end, OpenNI2's player thread then walks its stream list every 10 ms
+    // without a lock, and destroying a stream meanwhile can crash it (docs/decisions.md,
+    // Capture). Set to repeat, it instead starts over and waits for the next read, which never
+    // comes: Next() ends at the declared counts. Only where the recording holds exactly those
+    // counts (ScanOniFile's records; OpenNI2 refused to open the real recording with its
+    // counts raised to 13, so this is a second guard), so that no frame is read twice; should
+    // the player skip one anyway, ReadOne refuses the frame that starts the recording over.
+    impl.repeating = impl.color_total > 0 && impl.color_total == impl.color_records &&
+                     impl.depth_total > 0 && impl.depth_total == impl.depth_records;
+    if (impl.repeating && playback->setRepeatEnabled(true) != openni::STATUS_OK)
+      impl.repeating = false;
   }
   // Kinect v1 and the Xtion / Carmine class that OpenNI2 drives read colour out alike.
   impl.info.color_readout_ratio = slam::kKinectV1ReadoutRatio;
@@ -509,6 +534,8 @@ Expected<std::unique_ptr<FrameSource>> OpenNiSource::OpenFile(const std::filesys
     registration = "depth registered to colour (as asserted)";
   }
   impl->lacks_cropping = !image_node->has_cropping || !depth_node->has_cropping;
+  impl->color_records = static_cast<int>(image_node->frame_records);
+  impl->depth_records = static_cast<int>(depth_node->frame_records);
   if (Status s = SetUpStreams(*impl, registration); !s.ok()) return s.error();
   return std::unique_ptr<FrameSource>(new OpenNiSource(std::move(impl)));
 }

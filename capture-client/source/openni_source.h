@@ -3,8 +3,10 @@
 // the same reading code.
 //
 // Playback of a recording yields every frame in order: the device's PlaybackControl is set
-// to manual speed (-1: the reader advances only when a frame is read, never skipping) and
-// repeat off before the streams start; seek() is never used (it crashes Debian's reader).
+// to manual speed (-1: the reader advances only when a frame is read, never skipping) before
+// the streams start, and to repeat where the recording holds exactly the frames it declares
+// (reading ends at those counts; see Teardown); seek() is never used (it crashes Debian's
+// reader).
 // Before OpenNI2 sees the file, ScanOniFile checks its structure (oni_file_scan.h), so a
 // header-only or truncated file fails with a precise error instead of OpenNI2's silent
 // refusal. Every wait for a frame is bounded (wait_timeout_ms): a recording that yields no
@@ -29,8 +31,11 @@
 // flipped back, so that images follow the OpenCV camera model (x right, y down).
 //
 // Teardown stops the streams, destroys them, then closes the device. OpenNI2's recording
-// player walks its stream list on its own thread without a lock, so this can, rarely, crash
-// in the driver; no order of OpenNI2's public calls avoids it (docs/decisions.md, Capture).
+// player walks its stream list on its own thread without a lock once it has played to the
+// end, so destroying a stream then can crash it, and no order of the public calls avoids it
+// (docs/decisions.md, Capture). Set to repeat, the player instead waits at the recording's
+// start for a read that never comes; a recording that declares other counts than it holds
+// keeps the rare risk.
 //
 // Intrinsics from the field of view (OpenNI2 reports it per stream, in radians):
 //   fx = W / (2 tan(hfov / 2)),  fy = H / (2 tan(vfov / 2)),

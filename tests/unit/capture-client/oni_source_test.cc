@@ -212,6 +212,47 @@ TEST(OniSourceBadInput, RecordingThatYieldsNoFrameTimesOut) {
   EXPECT_NE(next.error().message.find("cropping"), std::string::npos) << next.error().message;
 }
 
+TEST(OniSourceBadInput, DepthFramesOutOfOrderAreRefused) {
+  // The sixth depth frame's record numbered 2: played with repeat on (the recording holds the
+  // frames it declares), a frame that does not follow the one before is what a recording
+  // started over looks like, and must not be taken for a new frame.
+  REQUIRE_REAL_ONI();
+  TempDir tmp;
+  std::vector<char> bytes = testing::ReadBytes(RealOni());
+  const auto scan = ScanOniFile(RealOni());
+  ASSERT_TRUE(scan.ok()) << scan.error().message;
+  const uint32_t depth_id = scan->FirstNodeOfType(kOniNodeTypeDepth)->id;
+  // Records from the 24-byte file header: u32 magic, type, node id, fields size (header
+  // included), payload size, u64 undo position, then a new-data record's u64 timestamp and
+  // u32 frame number (oni_file_scan.h; this file's version has the 28-byte record header).
+  size_t at = 24;
+  int depth_frames = 0;
+  bool patched = false;
+  while (at + 28 <= bytes.size() && !patched) {
+    uint32_t head[5];
+    std::memcpy(head, bytes.data() + at, sizeof head);
+    if (head[1] == 0x0A && head[2] == depth_id && ++depth_frames == 6) {
+      const uint32_t two = 2;
+      std::memcpy(bytes.data() + at + 28 + 8, &two, 4);
+      patched = true;
+    }
+    at += static_cast<size_t>(head[3]) + head[4];
+  }
+  ASSERT_TRUE(patched);
+  const fs::path file = tmp.path() / "unordered.oni";
+  testing::WriteBytes(file, bytes);
+  auto source = OpenFrameSource("oni:" + file.string() + "?timeout_ms=500");
+  ASSERT_TRUE(source.ok()) << source.error().message;
+  int frames = 0;
+  Expected<std::optional<SensorFrame>> next = std::optional<SensorFrame>();
+  while ((next = (*source)->Next()).ok() && next->has_value()) ++frames;
+  ASSERT_FALSE(next.ok()) << frames << " frames and the end";
+  EXPECT_EQ(next.error().code, "corrupt") << next.error().message;
+  EXPECT_NE(next.error().message.find("does not follow"), std::string::npos)
+      << next.error().message;
+  EXPECT_LT(frames, 6);
+}
+
 TEST(OniSourceBadInput, UnregisteredDepthIsRefused) {
   REQUIRE_REAL_ONI();
   TempDir tmp;
