@@ -155,11 +155,11 @@ struct OpenNiSource::Impl {
 };
 
 Status OpenNiSource::Impl::ReadOne(openni::VideoStream& stream, bool is_color) {
+  const std::string kind = is_color ? "colour" : "depth";
   openni::VideoFrameRef ref;
   if (stream.readFrame(&ref) != openni::STATUS_OK || !ref.isValid())
-    return MakeError("openni", where + ": reading a " + (is_color ? "colour" : "depth") +
-                                   " frame failed (" + OpenNiLastError() + ")");
-  const std::string kind = is_color ? "colour" : "depth";
+    return MakeError("openni",
+                     where + ": reading a " + kind + " frame failed (" + OpenNiLastError() + ")");
   int& last_index = is_color ? color_last_index : depth_last_index;
   const int read = is_color ? color_read : depth_read;
   if (repeating && read > 0 && ref.getFrameIndex() <= last_index)
