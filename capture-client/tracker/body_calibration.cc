@@ -13,6 +13,10 @@ void CalibrationOptions::Check() const {
                 "need 0 < min_height < max_height");
   REENACT_CHECK(min_span_ratio > 0 && max_offset_ratio > 0, "ratios must be > 0");
   REENACT_CHECK(refine_rounds >= 0, "refine_rounds must be >= 0");
+  REENACT_CHECK(average_neck_depth_ratio > 0 && head_scale_noise >= 0 && min_head_scale > 0 &&
+                    min_head_scale <= 1 && max_head_scale >= 1,
+                "need average_neck_depth_ratio > 0, head_scale_noise >= 0 and "
+                "0 < min_head_scale <= 1 <= max_head_scale");
   fit.Check();
   shape.Check();
 }
@@ -138,7 +142,20 @@ void RefitRadii(const ArticulatedBody& body, const PosedBody3& posed,
 
 }  // namespace
 
-BodyCalibration ProportionalBody(const PersonBlob& blob, const CalibrationOptions& options) {
+BodyShape WithHeadScaled(const BodyShape& shape, double scale) {
+  REENACT_CHECK(scale > 0 && std::isfinite(scale), "head scale must be positive");
+  BodyShape s = shape;
+  s.head_radius *= scale;
+  s.head_rise *= scale;
+  const double spine = s.lower_spine + s.upper_spine;
+  const double spine_scale = (spine + shape.StandingHeight() - s.StandingHeight()) / spine;
+  s.lower_spine *= spine_scale;
+  s.upper_spine *= spine_scale;
+  return s;
+}
+
+BodyCalibration ProportionalBody(const PersonBlob& blob, const CalibrationOptions& options,
+                                 std::optional<double> neck_below_top_m) {
   options.Check();
   BodyCalibration c;
   c.from_calibration_pose = false;
@@ -150,6 +167,14 @@ BodyCalibration ProportionalBody(const PersonBlob& blob, const CalibrationOption
   }
   c.status = CalibrationStatus::kOk;
   c.shape = BodyShape::FromHeight(c.height_m);
+  if (neck_below_top_m) {
+    REENACT_CHECK(*neck_below_top_m > 0 && std::isfinite(*neck_below_top_m),
+                  "neck depth must be positive");
+    const double m = *neck_below_top_m / (options.average_neck_depth_ratio * c.height_m) - 1;
+    const double excess = std::max(0.0, std::abs(m) - options.head_scale_noise);
+    c.shape = WithHeadScaled(c.shape, std::clamp(1 + std::copysign(excess, m),
+                                                 options.min_head_scale, options.max_head_scale));
+  }
   const auto lengths = c.shape.PartLengths();
   const auto radii = c.shape.PartRadii();
   for (int i = 0; i < kBodyPartCount; ++i) c.radius_ratio[i] = radii[i] / lengths[i];

@@ -45,6 +45,18 @@ struct CalibrationOptions {
   // once more.
   bool fit_lengths = true;
   ShapeFitOptions shape;
+  // ProportionalBody's head, where a neck depth was measured (head_size.h): the measured
+  // ratio m = that depth over average_neck_depth_ratio H (what the measurement reads on a body
+  // of average proportions: on the procedural body 0.097 H facing the sensor to 0.11-0.12 H
+  // side-on) is shrunk towards 1 by head_scale_noise (the measurement's uncertainty: that
+  // spread with the views, +-11 %, and a slice of 2-3 cm in a neck depth of 19 cm):
+  // scale = 1 + sign(m - 1) max(0, |m - 1| - head_scale_noise), so a head within it of the
+  // average keeps the average; then kept within [min_head_scale, max_head_scale].
+  // ratio > 0, noise >= 0, 0 < min_head_scale <= 1 <= max_head_scale.
+  double average_neck_depth_ratio = 0.108;
+  double head_scale_noise = 0.15;
+  double min_head_scale = 0.75;
+  double max_head_scale = 1.7;
 
   void Check() const;
 };
@@ -89,9 +101,18 @@ std::optional<ArticulatedPose> CalibrationStartPose(const ArticulatedBody& body,
 
 // The fallback for a subject who never shows the calibration pose: the shape from the
 // standing height alone (step 3 without the span), status kOk when the height is plausible.
+// neck_below_top_m: the head's neck depth measured in this and earlier frames (head_size.h;
+// SkeletonTracker takes the median over the frames it waited for the calibration pose), which
+// scales the head (WithHeadScaled, see CalibrationOptions); without it, an average head.
 // The pose is left at its default; the caller places the body (SkeletonTracker does so as
 // when recovering from the silhouette).
-BodyCalibration ProportionalBody(const PersonBlob& blob, const CalibrationOptions& options = {});
+BodyCalibration ProportionalBody(const PersonBlob& blob, const CalibrationOptions& options = {},
+                                 std::optional<double> neck_below_top_m = std::nullopt);
+
+// `shape` with its head's radius and rise (neck -> head centre) times scale (> 0), the two
+// spine lengths scaled together to keep the standing height: a larger head lowers the neck,
+// the trunk and the hips, the legs stay.
+BodyShape WithHeadScaled(const BodyShape& shape, double scale);
 
 // Steps 1-4. subsample: data points every subsample-th grid point (>= 1).
 BodyCalibration CalibrateBody(const PersonBlob& blob, const PinholeCamera& camera, int subsample,

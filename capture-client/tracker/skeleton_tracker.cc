@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "common/error/check.h"
+#include "common/estimate/median.h"
 
 namespace reenact::capture {
 namespace {
@@ -56,6 +57,7 @@ void SkeletonTrackerOptions::Check() const {
                 "start_without_calibration_after must be >= -1");
   REENACT_CHECK(heading_candidates >= 1, "heading_candidates must be >= 1");
   extremities.Check();
+  head_size.Check();
   REENACT_CHECK(extremity_min_offset_m >= 0, "extremity_min_offset_m must be >= 0");
   travel.Check();
   REENACT_CHECK(travel_flip_cos >= -1 && travel_flip_cos <= 1, "travel_flip_cos in [-1, 1]");
@@ -102,6 +104,7 @@ void SkeletonTracker::Reset() {
   has_previous_ = false;
   bad_frames_ = 0;
   uncalibrated_frames_ = 0;
+  waiting_neck_depths_.clear();
   travel_.Clear();
   heading_cooldown_ = 0;
   frames_since_silhouette_start_ = -1;
@@ -378,11 +381,23 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
     BodyCalibration c = CalibrateBody(blob, camera_, options_.subsample, options_.calibration);
     if (c.status != CalibrationStatus::kOk || !Good(c.fit)) {
       const int after = options_.start_without_calibration_after;
-      if (after < 0 || ++uncalibrated_frames_ < after) {
+      if (after < 0) {
         out.state = state_;
         return out;
       }
-      BodyCalibration p = ProportionalBody(blob, options_.calibration);
+      if (const auto head = MeasureHeadSize(blob, camera_.fy, options_.head_size)) {
+        constexpr size_t kKept = 64;  // the latest, while a start keeps failing
+        if (waiting_neck_depths_.size() == kKept)
+          waiting_neck_depths_.erase(waiting_neck_depths_.begin());
+        waiting_neck_depths_.push_back(head->neck_below_top_m);
+      }
+      if (++uncalibrated_frames_ < after) {
+        out.state = state_;
+        return out;
+      }
+      std::optional<double> neck_depth;
+      if (!waiting_neck_depths_.empty()) neck_depth = Median(waiting_neck_depths_);
+      BodyCalibration p = ProportionalBody(blob, options_.calibration, neck_depth);
       if (p.status != CalibrationStatus::kOk) {
         out.state = state_;
         return out;

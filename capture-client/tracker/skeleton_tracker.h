@@ -7,8 +7,9 @@
 //    (body_calibration.h: height, arm span, 16-joint skeleton, radii); bone lengths are
 //    fixed from then on. A subject who has not shown the calibration pose after
 //    start_without_calibration_after frames with a detected person gets a body of average
-//    proportions for its standing height (ProportionalBody), placed as when recovering from
-//    the silhouette (below); its bone lengths are less exact.
+//    proportions for its standing height (ProportionalBody), its head scaled by the median
+//    neck depth measured on those frames (head_size.h), placed as when recovering from the
+//    silhouette (below); its bone lengths are less exact.
 //  - Tracking: detect the person near its previous centroid (of the points the last fit
 //    explained, so that an object once merged with the person does not pull it; across the
 //    detector's larger tracking_merge_step_m, so a hand behind the head stays), keep the points
@@ -58,6 +59,7 @@
 #include "capture-client/tracker/body_fit.h"
 #include "capture-client/tracker/extremity_pose.h"
 #include "capture-client/tracker/geodesic_extremities.h"
+#include "capture-client/tracker/head_size.h"
 #include "capture-client/tracker/heading.h"
 #include "capture-client/tracker/limb_search.h"
 #include "capture-client/tracker/limb_swap.h"
@@ -135,6 +137,8 @@ struct SkeletonTrackerOptions {
   // Frames with a detected person, without the calibration pose, after which tracking starts
   // with average proportions; -1 = never (wait for the calibration pose). >= -1.
   int start_without_calibration_after = 15;
+  // The head's measurement on those frames (head_size.h).
+  HeadSizeOptions head_size;
   // Headings tried when starting without the calibration pose and when recovering from the
   // silhouette (heading.h: evenly spaced about up, the first facing the sensor), >= 1.
   int heading_candidates = 8;
@@ -251,6 +255,7 @@ class SkeletonTracker {
   Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
   int bad_frames_ = 0;
   int uncalibrated_frames_ = 0;
+  std::vector<double> waiting_neck_depths_;  // head_size.h's, on the frames waited
   TravelDirection travel_;
   // Frames collected for the on-the-fly calibration, and frames since the last one.
   std::vector<BodyObservation> motion_obs_;

@@ -208,6 +208,11 @@ TEST(SkeletonTracker, StartsWithAverageProportionsWithoutTheCalibrationPose) {
   // Average proportions at the measured height: bound as calibration, plus the arm lengths
   // that the span no longer gives.
   EXPECT_LT(Mpjpe(*r.skeleton, Truth(41)), 0.05);
+  // The procedural body's head is the average one (body_model.h's proportions): its measured
+  // neck depth (0.097 H facing the sensor, as here) lies within the measurement's noise of the
+  // average, so the head stays.
+  const BodyCalibration& c = *tracker.calibration();
+  EXPECT_EQ(c.shape.head_radius, BodyShape::FromHeight(c.height_m).head_radius);
 }
 
 TEST(SkeletonTracker, BadInputIsABug) {
@@ -300,20 +305,75 @@ void TrackFrames(const SyntheticScene& scene, const SkeletonTrackerOptions& opti
   }
 }
 
-// Heading errors (radians, HeadingError) of the track of CesiumMan walking CMU 131_02 from its
-// first frame, on frames [first, end).
-std::vector<double> CesiumWalkHeadingErrors(const SkeletonTrackerOptions& options, int first,
-                                            int end) {
+// CesiumMan walking CMU 131_02 (no calibration pose; it stands for the first frames).
+const SyntheticScene& CesiumWalk() {
   SyntheticBodySpec body;
   body.gltf_path = std::string(REENACT_SHARED_DATA_DIR) + "/models/CesiumMan.glb";
   const std::string bvh = std::string(REENACT_SHARED_DATA_DIR) + "/mocap/cmu-131_02-walk.bvh";
   static const SyntheticScene scene = SyntheticScene::Create("bvh:" + bvh, 1, body).value();
+  return scene;
+}
+
+// Heading errors (radians, HeadingError) of the track of CesiumWalk() from its first frame,
+// on frames [first, end).
+std::vector<double> CesiumWalkHeadingErrors(const SkeletonTrackerOptions& options, int first,
+                                            int end) {
   std::vector<double> errors;
-  TrackFrames(scene, options, first, end,
+  TrackFrames(CesiumWalk(), options, first, end,
               [&](const Skeleton& track, const Skeleton& truth, const Eigen::Vector3d& up) {
                 errors.push_back(HeadingError(track, truth, up));
               });
   return errors;
+}
+
+// Options whose start without the calibration pose keeps the average head (head_size.h's
+// measurement clamped to scale 1).
+SkeletonTrackerOptions AverageHead() {
+  SkeletonTrackerOptions options;
+  options.calibration.min_head_scale = options.calibration.max_head_scale = 1;
+  return options;
+}
+
+TEST(SkeletonTracker, StartsWithTheMeasuredHeadWithoutTheCalibrationPose) {
+  // CesiumMan's head is large: head_size.h reads 0.27-0.30 m from its top to its neck, 0.18 H
+  // of its 1.51 m, against 0.097-0.12 H on the procedural body of average proportions, so the
+  // start without the calibration pose scales the proportional head by about 1.5 (0.18 /
+  // 0.108 less the measurement's noise allowance of 0.15; ProportionalBody). An average head
+  // hangs the neck and the trunk below the top by the average, about (0.18 - 0.11) H = 10 cm
+  // too high; the measured head takes most of that out. Bounds: the head scaled by more than 1.3;
+  // the neck's mean height error (along up, frames 15-40 after the start at frame 14) lower by more
+  // than 6 cm, 60 % of the 10 cm.
+  const auto neck_rise = [](const SkeletonTrackerOptions& options, double* head_scale) {
+    SkeletonTracker tracker(CesiumWalk().sensor_camera(), 0.001, options);
+    SyntheticRenderOptions render;
+    render.depth_noise = true;
+    double rise = 0;
+    int n = 0;
+    for (int f = 0; f <= 40; ++f) {
+      const Eigen::Isometry3d world_from_sensor = CesiumWalk().world_from_sensor(f);
+      const TrackFrameResult r = tracker.Track(CesiumWalk().RenderSensor(f, render).depth,
+                                               world_from_sensor, CesiumWalk().world_up());
+      if (f < 15) continue;
+      EXPECT_TRUE(r.skeleton) << f;
+      if (!r.skeleton) continue;
+      const Skeleton truth =
+          CesiumWalk().skeleton_in_world(f).Transformed(world_from_sensor.inverse());
+      const Eigen::Vector3d up = world_from_sensor.linear().transpose() * CesiumWalk().world_up();
+      const int neck = static_cast<int>(Joint::kNeck);
+      rise += up.dot(r.skeleton->position[neck] - truth.position[neck]);
+      ++n;
+    }
+    const BodyCalibration& c = *tracker.calibration();
+    EXPECT_FALSE(c.from_calibration_pose);
+    *head_scale = c.shape.head_radius / BodyShape::FromHeight(c.height_m).head_radius;
+    return n > 0 ? rise / n : 0.0;
+  };
+  double measured_scale = 0, average_scale = 0;
+  const double measured = neck_rise(SkeletonTrackerOptions{}, &measured_scale);
+  const double average = neck_rise(AverageHead(), &average_scale);
+  EXPECT_GT(measured_scale, 1.3);
+  EXPECT_DOUBLE_EQ(average_scale, 1.0);
+  EXPECT_LT(measured, average - 0.06);
 }
 
 TEST(SkeletonTracker, ChecksTheFrontOfAStartFromTheSilhouette) {
@@ -328,10 +388,12 @@ TEST(SkeletonTracker, ChecksTheFrontOfAStartFromTheSilhouette) {
   // Bounds: backwards is beyond 120 degrees on every frame, the right way round within 60 (the
   // capsule body's heading on CesiumMan is 20-47 degrees off through this walk;
   // docs/measurements.md).
-  SkeletonTrackerOptions without;
+  // The body keeps the average head here: with the head measured (the test above) the start
+  // on this walk already faces the right way, and the check is for the starts that do not.
+  SkeletonTrackerOptions without = AverageHead();
   without.front_check_frames = 0;
   for (const double e : CesiumWalkHeadingErrors(without, 25, 41)) EXPECT_GT(e * 180 / M_PI, 120.0);
-  for (const double e : CesiumWalkHeadingErrors(SkeletonTrackerOptions{}, 25, 41))
+  for (const double e : CesiumWalkHeadingErrors(AverageHead(), 25, 41))
     EXPECT_LT(e * 180 / M_PI, 60.0);
 }
 

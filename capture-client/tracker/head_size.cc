@@ -1,0 +1,63 @@
+#include "capture-client/tracker/head_size.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "common/error/check.h"
+
+namespace reenact::capture {
+
+void HeadSizeOptions::Check() const {
+  REENACT_CHECK(slice_m > 0 && band_m > slice_m, "need band_m > slice_m > 0");
+  REENACT_CHECK(neck_ratio > 0 && neck_ratio < 1, "neck_ratio must lie in (0, 1)");
+  REENACT_CHECK(min_slice_points >= 2, "min_slice_points must be >= 2");
+}
+
+std::optional<HeadSize> MeasureHeadSize(const PersonBlob& blob, double camera_fy,
+                                        const HeadSizeOptions& options) {
+  options.Check();
+  REENACT_CHECK(camera_fy > 0 && std::isfinite(camera_fy), "focal length must be positive");
+  if (blob.status != DetectStatus::kOk || !blob.floor_in_sensor || blob.points.empty())
+    return std::nullopt;
+  const Plane3& floor = *blob.floor_in_sensor;
+  const Eigen::Vector3d up = floor.normal.normalized();
+  double top = -std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector3d& p : blob.points) top = std::max(top, floor.SignedDistance(p));
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (const Eigen::Vector3d& p : blob.points)
+    if (floor.SignedDistance(p) >= top - options.band_m) centroid += p, ++n;
+  centroid /= n;
+  const Eigen::Vector3d across = up.cross(centroid - up * up.dot(centroid));
+  if (across.norm() < 1e-6 * centroid.norm() || centroid.z() <= 0) return std::nullopt;
+  const Eigen::Vector3d u_axis = across.normalized();
+
+  const double grid_m = blob.grid_step_px * centroid.z() / camera_fy;
+  const double slice_m = std::max(options.slice_m, 2 * grid_m);
+  const int slices = static_cast<int>(std::ceil(options.band_m / slice_m));
+  std::vector<double> lo(slices, std::numeric_limits<double>::infinity());
+  std::vector<double> hi(slices, -std::numeric_limits<double>::infinity());
+  std::vector<int> count(slices, 0);
+  for (const Eigen::Vector3d& p : blob.points) {
+    const double below = top - floor.SignedDistance(p);
+    if (below >= options.band_m) continue;
+    const int k = std::min(slices - 1, static_cast<int>(below / slice_m));
+    const double u = u_axis.dot(p);
+    lo[k] = std::min(lo[k], u);
+    hi[k] = std::max(hi[k], u);
+    ++count[k];
+  }
+  double widest = 0;
+  for (int k = 0; k < slices; ++k) {
+    if (count[k] < options.min_slice_points) continue;
+    const double width = hi[k] - lo[k];
+    if (width < options.neck_ratio * widest)
+      return HeadSize{.half_width_m = 0.5 * widest, .neck_below_top_m = (k + 0.5) * slice_m};
+    widest = std::max(widest, width);
+  }
+  return std::nullopt;
+}
+
+}  // namespace reenact::capture
