@@ -50,14 +50,24 @@ std::optional<HeadSize> MeasureHeadSize(const PersonBlob& blob, double camera_fy
     ++count[k];
   }
   double widest = 0;
-  for (int k = 0; k < slices; ++k) {
+  int neck = -1;
+  for (int k = 0; k < slices && neck < 0; ++k) {
     if (count[k] < options.min_slice_points) continue;
     const double width = hi[k] - lo[k];
-    if (width < options.neck_ratio * widest)
-      return HeadSize{.half_width_m = 0.5 * widest, .neck_below_top_m = (k + 0.5) * slice_m};
+    if (width < options.neck_ratio * widest) neck = k;
     widest = std::max(widest, width);
   }
-  return std::nullopt;
+  if (neck < 0) return std::nullopt;
+  // The head down to the neck must lie inside the image: a head cut by its edge reads short.
+  if (blob.pixels.size() == blob.points.size() && blob.mask.width > 0 && blob.mask.height > 0)
+    for (size_t i = 0; i < blob.points.size(); ++i) {
+      const Eigen::Vector2i& px = blob.pixels[i];
+      const bool on_border = px.x() <= 0 || px.y() <= 0 || px.x() >= blob.mask.width - 1 ||
+                             px.y() >= blob.mask.height - 1;
+      if (on_border && top - floor.SignedDistance(blob.points[i]) < (neck + 1) * slice_m)
+        return std::nullopt;
+    }
+  return HeadSize{.half_width_m = 0.5 * widest, .neck_below_top_m = (neck + 0.5) * slice_m};
 }
 
 }  // namespace reenact::capture

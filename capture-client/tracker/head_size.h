@@ -41,7 +41,9 @@ struct HeadSize {
 };
 
 // blob: a detected person; camera_fy: the focal length (pixels) of the camera whose grid the
-// blob's points lie on (> 0).
+// blob's points lie on (> 0). The head is cut by the image's edge when a point down to the
+// neck lies on the grid's outermost rows or columns (blob.pixels, blob.mask's size; not
+// checked when the blob has no pixel per point).
 std::optional<HeadSize> MeasureHeadSize(const PersonBlob& blob, double camera_fy,
                                         const HeadSizeOptions& options = {});
 

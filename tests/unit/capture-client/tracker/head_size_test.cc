@@ -28,14 +28,14 @@ Eigen::Vector3d At(double x, double height, double z) {
   return Eigen::Vector3d(x, kSensorHeight - height, z);
 }
 
-// A figure at depth 3 m standing on the floor, facing the sensor: a head (a sphere of radius
+// A figure at depth z standing on the floor, facing the sensor: a head (a sphere of radius
 // r, its top at 1.75 m), a neck (radius 0.45 r, from the chin 8 cm down) and a trunk (a
 // capsule of radius 0.17, its top 2 cm below the neck's bottom, wider than any head here).
-std::vector<Capsule> Figure(double r) {
+std::vector<Capsule> Figure(double r, double z = 3) {
   const double top = 1.75, chin = top - 2 * r, neck_bottom = chin - 0.08;
-  return {{At(0, top - r, 3), At(0, top - r, 3), r},
-          {At(0, chin + 0.2 * r, 3), At(0, neck_bottom, 3), 0.45 * r},
-          {At(0, neck_bottom - 0.02 - 0.17, 3), At(0, 0.5, 3), 0.17}};
+  return {{At(0, top - r, z), At(0, top - r, z), r},
+          {At(0, chin + 0.2 * r, z), At(0, neck_bottom, z), 0.45 * r},
+          {At(0, neck_bottom - 0.02 - 0.17, z), At(0, 0.5, z), 0.17}};
 }
 
 // The person's blob as the detector gives it: every 2nd pixel of the Kinect-like camera that
@@ -46,6 +46,7 @@ PersonBlob Blob(const std::vector<Capsule>& figure) {
   blob.status = DetectStatus::kOk;
   blob.grid_step_px = 2;
   blob.floor_in_sensor = tracker_test::LevelFloor();
+  blob.mask = ImageGray8(cam.width / 2, cam.height / 2, 1, 0);
   for (int v = 0; v < cam.height; v += 2)
     for (int u = 0; u < cam.width; u += 2) {
       const Eigen::Vector3d d =
@@ -54,6 +55,7 @@ PersonBlob Blob(const std::vector<Capsule>& figure) {
       for (const Capsule& c : figure)
         t = std::min(t, tracker_test::RayCapsule(d, c.a, c.b, c.radius));
       if (std::isfinite(t)) {
+        blob.mask.at(u / 2, v / 2) = 255;
         blob.points.push_back(t * d);
         blob.pixels.emplace_back(u / 2, v / 2);
       }
@@ -98,6 +100,14 @@ TEST(HeadSize, ArmsRaisedAboveTheHeadHideTheNeck) {
   std::vector<Capsule> figure = Figure(0.1);
   for (const double x : {-0.25, 0.25}) figure.push_back({At(x, 1.35, 3), At(x, 2.0, 3), 0.05});
   EXPECT_FALSE(MeasureHeadSize(Blob(figure), kFy));
+}
+
+TEST(HeadSize, AHeadCutByTheImagesEdgeGivesNoMeasurement) {
+  // At 0.8 m the level sensor (1.3 m high, 255 px above the principal point at f = 516.5 px)
+  // sees up to 1.3 + 0.8 * 255 / 516.5 = 1.69 m: the top of the 1.75 m head is cut, while the
+  // chin and the neck (1.55 m and below) are in view. At 1.2 m it sees up to 1.89 m.
+  EXPECT_FALSE(MeasureHeadSize(Blob(Figure(0.1, 0.8)), kFy));
+  EXPECT_TRUE(MeasureHeadSize(Blob(Figure(0.1, 1.2)), kFy));
 }
 
 TEST(HeadSize, DegenerateBlobsGiveNoMeasurement) {
