@@ -140,6 +140,15 @@ void RefitRadii(const ArticulatedBody& body, const PosedBody3& posed,
   refit({13, 15}, &shape->shin_radius, prior.shin_radius);
 }
 
+// `scaled` with its two spine lengths scaled together to give `original`'s standing height.
+BodyShape SpineKeepingHeight(BodyShape scaled, const BodyShape& original) {
+  const double spine = scaled.lower_spine + scaled.upper_spine;
+  const double k = (spine + original.StandingHeight() - scaled.StandingHeight()) / spine;
+  scaled.lower_spine *= k;
+  scaled.upper_spine *= k;
+  return scaled;
+}
+
 }  // namespace
 
 BodyShape WithHeadScaled(const BodyShape& shape, double scale) {
@@ -147,11 +156,22 @@ BodyShape WithHeadScaled(const BodyShape& shape, double scale) {
   BodyShape s = shape;
   s.head_radius *= scale;
   s.head_rise *= scale;
-  const double spine = s.lower_spine + s.upper_spine;
-  const double spine_scale = (spine + shape.StandingHeight() - s.StandingHeight()) / spine;
-  s.lower_spine *= spine_scale;
-  s.upper_spine *= spine_scale;
-  return s;
+  return SpineKeepingHeight(s, shape);
+}
+
+BodyShape WithLegsScaled(const BodyShape& shape, double scale) {
+  REENACT_CHECK(scale > 0 && std::isfinite(scale), "leg scale must be positive");
+  BodyShape s = shape;
+  s.thigh *= scale;
+  s.shin *= scale;
+  return SpineKeepingHeight(s, shape);
+}
+
+double ScaleBeyondNoise(double m, double noise, double lo, double hi) {
+  REENACT_CHECK(m > 0 && std::isfinite(m), "measured ratio must be positive");
+  REENACT_CHECK(noise >= 0 && lo > 0 && lo <= hi, "need noise >= 0, 0 < lo <= hi");
+  const double excess = std::max(0.0, std::abs(m - 1) - noise);
+  return std::clamp(1 + std::copysign(excess, m - 1), lo, hi);
 }
 
 BodyCalibration ProportionalBody(const PersonBlob& blob, const CalibrationOptions& options,
@@ -170,10 +190,10 @@ BodyCalibration ProportionalBody(const PersonBlob& blob, const CalibrationOption
   if (neck_below_top_m) {
     REENACT_CHECK(*neck_below_top_m > 0 && std::isfinite(*neck_below_top_m),
                   "neck depth must be positive");
-    const double m = *neck_below_top_m / (options.average_neck_depth_ratio * c.height_m) - 1;
-    const double excess = std::max(0.0, std::abs(m) - options.head_scale_noise);
-    c.shape = WithHeadScaled(c.shape, std::clamp(1 + std::copysign(excess, m),
-                                                 options.min_head_scale, options.max_head_scale));
+    c.shape = WithHeadScaled(
+        c.shape,
+        ScaleBeyondNoise(*neck_below_top_m / (options.average_neck_depth_ratio * c.height_m),
+                         options.head_scale_noise, options.min_head_scale, options.max_head_scale));
   }
   const auto lengths = c.shape.PartLengths();
   const auto radii = c.shape.PartRadii();

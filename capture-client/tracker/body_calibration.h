@@ -114,6 +114,15 @@ BodyCalibration ProportionalBody(const PersonBlob& blob, const CalibrationOption
 // the trunk and the hips, the legs stay.
 BodyShape WithHeadScaled(const BodyShape& shape, double scale);
 
+// `shape` with its thigh and shin times scale (> 0), the spine keeping the standing height as
+// above: shorter legs lower the hips and lengthen the trunk.
+BodyShape WithLegsScaled(const BodyShape& shape, double scale);
+
+// A measured ratio m (> 0, finite) to the average, read as a scale: shrunk towards 1 by the
+// measurement's noise (>= 0), 1 + sign(m - 1) max(0, |m - 1| - noise), so that a reading
+// within the noise of the average keeps the average; then kept within [lo, hi].
+double ScaleBeyondNoise(double m, double noise, double lo, double hi);
+
 // Steps 1-4. subsample: data points every subsample-th grid point (>= 1).
 BodyCalibration CalibrateBody(const PersonBlob& blob, const PinholeCamera& camera, int subsample,
                               const CalibrationOptions& options = {});

@@ -72,6 +72,11 @@ void SkeletonTrackerOptions::Check() const {
       motion_calibration_frames >= 0 && motion_frame_spacing >= 1 && motion_min_leg_spread_rad >= 0,
       "motion_calibration_frames >= 0, motion_frame_spacing >= 1, "
       "motion_min_leg_spread_rad >= 0");
+  crotch.Check();
+  REENACT_CHECK(min_crotch_frames >= 1 && average_crotch_ratio > 0 && leg_scale_noise >= 0 &&
+                    min_leg_scale > 0 && min_leg_scale <= 1 && max_leg_scale >= 1,
+                "need min_crotch_frames >= 1, average_crotch_ratio > 0, leg_scale_noise >= 0 "
+                "and 0 < min_leg_scale <= 1 <= max_leg_scale");
   REENACT_CHECK(full_support_ratio > 0 && full_support_ratio <= 1, "full_support_ratio in (0, 1]");
   REENACT_CHECK(min_confidence > 0 && min_confidence <= 1, "min_confidence in (0, 1]");
 }
@@ -112,6 +117,7 @@ void SkeletonTracker::Reset() {
   motion_obs_.clear();
   motion_poses_.clear();
   since_motion_frame_ = 0;
+  crotch_heights_.clear();
   detector_.ResetFloor();
 }
 
@@ -320,10 +326,13 @@ BodyFitResult SkeletonTracker::CheckTravelHeading(
   return fit;
 }
 
+bool SkeletonTracker::OnTheFlyCalibrationPending() const {
+  return calibration_ && !calibration_->from_calibration_pose && calibration_->motion_frames == 0 &&
+         options_.motion_calibration_frames > 0;
+}
+
 void SkeletonTracker::CollectMotionFrame(const BodyFitResult& fit, const BodyObservation& obs) {
-  if (!calibration_ || calibration_->from_calibration_pose || calibration_->motion_frames > 0 ||
-      options_.motion_calibration_frames == 0)
-    return;
+  if (!OnTheFlyCalibrationPending()) return;
   ++since_motion_frame_;
   if (!motion_obs_.empty() && since_motion_frame_ < options_.motion_frame_spacing) return;
   const auto& seg = fit.posed.sensor_from_segment;
@@ -336,6 +345,18 @@ void SkeletonTracker::CollectMotionFrame(const BodyFitResult& fit, const BodyObs
   if (static_cast<int>(motion_obs_.size()) < options_.motion_calibration_frames) return;
   std::vector<const BodyObservation*> observations;
   for (const BodyObservation& o : motion_obs_) observations.push_back(&o);
+  if (static_cast<int>(crotch_heights_.size()) >= options_.min_crotch_frames) {
+    std::vector<double> h = crotch_heights_;
+    const size_t k = std::min(h.size() - 1, static_cast<size_t>(0.9 * h.size()));
+    std::nth_element(h.begin(), h.begin() + k, h.end());
+    const BodyShape& shape = body_->shape();
+    const double m = 1 + (h[k] - options_.average_crotch_ratio * calibration_->height_m) /
+                             (shape.thigh + shape.shin);
+    if (m > 0)
+      body_.emplace(
+          WithLegsScaled(shape, ScaleBeyondNoise(m, options_.leg_scale_noise,
+                                                 options_.min_leg_scale, options_.max_leg_scale)));
+  }
   const MultiFrameShapeFit sf =
       FitBodyShapeFrames(body_->shape(), motion_poses_, observations, calibration_->height_m,
                          options_.fit, options_.calibration.shape, options_.limits);
@@ -348,6 +369,15 @@ void SkeletonTracker::CollectMotionFrame(const BodyFitResult& fit, const BodyObs
   pose_ = sf.poses.back();
   motion_obs_.clear();
   motion_poses_.clear();
+  crotch_heights_.clear();
+}
+
+void SkeletonTracker::CollectCrotchHeight(const BodyFitResult& fit, const PersonBlob& blob) {
+  if (!OnTheFlyCalibrationPending()) return;
+  const auto& joints = fit.posed.skeleton.position;
+  const auto c = MeasureCrotchHeight(blob, camera_, joints[static_cast<int>(Joint::kLeftFoot)],
+                                     joints[static_cast<int>(Joint::kRightFoot)], options_.crotch);
+  if (c) crotch_heights_.push_back(*c);
 }
 
 TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
@@ -492,7 +522,10 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
   previous_pose_ = pose_;
   pose_ = fit.pose;
   has_previous_ = true;
-  if (out.good_fit) CollectMotionFrame(fit, obs);
+  if (out.good_fit) {
+    CollectMotionFrame(fit, obs);
+    CollectCrotchHeight(fit, blob);
+  }
   out.skeleton = WithConfidence(fit, obs, options_.fit.inlier_m, out.good_fit);
   out.state = state_;
   return out;

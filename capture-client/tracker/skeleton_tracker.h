@@ -9,7 +9,9 @@
 //    start_without_calibration_after frames with a detected person gets a body of average
 //    proportions for its standing height (ProportionalBody), its head scaled by the median
 //    neck depth measured on those frames (head_size.h), placed as when recovering from the
-//    silhouette (below); its bone lengths are less exact.
+//    silhouette (below); its bone lengths are less exact. Once it walks, its legs are scaled
+//    by the crotch's height seen between them (crotch_height.h) and its lengths fitted over
+//    frames with the legs apart (motion_calibration_frames, below).
 //  - Tracking: detect the person near its previous centroid (of the points the last fit
 //    explained, so that an object once merged with the person does not pull it; across the
 //    detector's larger tracking_merge_step_m, so a hand behind the head stays), keep the points
@@ -57,6 +59,7 @@
 #include "capture-client/tracker/articulated_body.h"
 #include "capture-client/tracker/body_calibration.h"
 #include "capture-client/tracker/body_fit.h"
+#include "capture-client/tracker/crotch_height.h"
 #include "capture-client/tracker/extremity_pose.h"
 #include "capture-client/tracker/geodesic_extremities.h"
 #include "capture-client/tracker/head_size.h"
@@ -173,6 +176,20 @@ struct SkeletonTrackerOptions {
   int motion_calibration_frames = 4;
   int motion_frame_spacing = 4;
   double motion_min_leg_spread_rad = 0.3;
+  // Before that fit, once at least min_crotch_frames (>= 1) tracked frames since the start
+  // have measured the crotch's height (crotch_height.h), the legs are scaled by it: the 90th
+  // percentile c of the heights (the crotch itself; lower readings come from lines up an
+  // inner thigh) against average_crotch_ratio H (> 0; what it reads on the procedural body
+  // walking, 0.476-0.478 H on both CMU walks) moves the hip joints by c - average_crotch_ratio
+  // H, so the legs scale by m = 1 + that / (thigh + shin), shrunk towards 1 by
+  // leg_scale_noise and kept within [min_leg_scale, max_leg_scale] (ScaleBeyondNoise), the
+  // spine keeping the height (WithLegsScaled). 0 < min_leg_scale <= 1 <= max_leg_scale.
+  CrotchHeightOptions crotch;
+  int min_crotch_frames = 5;
+  double average_crotch_ratio = 0.478;
+  double leg_scale_noise = 0.05;
+  double min_leg_scale = 0.8;
+  double max_leg_scale = 1.2;
   double full_support_ratio = 0.5;  // (0, 1]
   double min_confidence = 0.05;     // (0, 1]: tracked joints are never reported missing
 
@@ -261,7 +278,12 @@ class SkeletonTracker {
   std::vector<BodyObservation> motion_obs_;
   std::vector<ArticulatedPose> motion_poses_;
   int since_motion_frame_ = 0;
+  // A start without the calibration pose whose on-the-fly calibration has not run yet.
+  bool OnTheFlyCalibrationPending() const;
   void CollectMotionFrame(const BodyFitResult& fit, const BodyObservation& obs);
+  // Crotch heights (crotch_height.h) of the tracked frames before the on-the-fly calibration.
+  std::vector<double> crotch_heights_;
+  void CollectCrotchHeight(const BodyFitResult& fit, const PersonBlob& blob);
   int heading_cooldown_ = 0;
   // Tracked frames since a start whose heading came from the silhouette (front_check_*).
   int frames_since_silhouette_start_ = -1;  // -1: none
