@@ -14,6 +14,7 @@
 #include "capture-client/tracker/articulated_body.h"
 #include "capture-client/tracker/body_fit.h"
 #include "capture-client/tracker/heading.h"
+#include "capture-client/tracker/person_detector.h"
 
 namespace reenact::capture::tracker_test {
 
@@ -102,6 +103,44 @@ inline BodyObservation PointsObservation(std::vector<Eigen::Vector3d> points) {
   obs.outside_px = Image<float>(w, h, 1, 0.f);
   obs.points = std::move(points);
   return obs;
+}
+
+// A capsule of a ray-cast figure (SceneBlob), sensor frame, metres.
+struct SceneCapsule {
+  Eigen::Vector3d a, b;
+  double radius;
+};
+
+// A point `height` above the floor under the level sensor, at (x, z) of the sensor frame.
+inline Eigen::Vector3d AboveFloor(double x, double height, double z) {
+  return Eigen::Vector3d(x, kSensorHeight - height, z);
+}
+
+// A figure's person blob as the detector gives it: every 2nd pixel of the Kinect-like camera
+// that sees one of the capsules (mask, depth readings as z, points and their grid pixels),
+// status kOk, the level floor known.
+inline PersonBlob SceneBlob(const std::vector<SceneCapsule>& figure) {
+  const PinholeCamera cam = PinholeCamera::KinectLike();
+  PersonBlob blob;
+  blob.status = DetectStatus::kOk;
+  blob.grid_step_px = 2;
+  blob.floor_in_sensor = LevelFloor();
+  blob.mask = ImageGray8(cam.width / 2, cam.height / 2, 1, 0);
+  blob.depth_m = Image<float>(cam.width / 2, cam.height / 2, 1, 0.f);
+  for (int v = 0; v < cam.height; v += 2)
+    for (int u = 0; u < cam.width; u += 2) {
+      const Eigen::Vector3d d =
+          Eigen::Vector3d((u - cam.cx) / cam.fx, (v - cam.cy) / cam.fy, 1).normalized();
+      double t = std::numeric_limits<double>::infinity();
+      for (const SceneCapsule& c : figure) t = std::min(t, RayCapsule(d, c.a, c.b, c.radius));
+      if (!std::isfinite(t)) continue;
+      const Eigen::Vector3d p = t * d;
+      blob.mask.at(u / 2, v / 2) = 255;
+      blob.depth_m.at(u / 2, v / 2) = static_cast<float>(p.z());
+      blob.points.push_back(p);
+      blob.pixels.emplace_back(u / 2, v / 2);
+    }
+  return blob;
 }
 
 }  // namespace reenact::capture::tracker_test

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
 #include <vector>
 
 #include "capture-client/tracker/body_calibration.h"
@@ -16,51 +15,17 @@
 namespace reenact::capture {
 namespace {
 
-using tracker_test::kSensorHeight;
-
-struct Capsule {
-  Eigen::Vector3d a, b;  // sensor frame
-  double radius;
-};
-
-// A point `height` above the floor under the level sensor, at (x, z) of the sensor frame.
-Eigen::Vector3d At(double x, double height, double z) {
-  return Eigen::Vector3d(x, kSensorHeight - height, z);
-}
+using tracker_test::AboveFloor;
+using tracker_test::SceneBlob;
+using Capsule = tracker_test::SceneCapsule;
 
 // A trunk (radius 0.17, its lowest point 0.78 m above the floor, at depth 3 m) on two legs
 // (radius r) from the hips, 9 cm either side of the middle at 0.85 m, to the ankles.
 std::vector<Capsule> Figure(const Eigen::Vector3d& left_ankle, const Eigen::Vector3d& right_ankle,
                             double r = 0.06) {
-  return {{At(0, 0.95, 3), At(0, 1.45, 3), 0.17},
-          {At(-0.09, 0.85, 3), left_ankle, r},
-          {At(0.09, 0.85, 3), right_ankle, r}};
-}
-
-// The person's blob on the grid of every 2nd pixel of the Kinect-like camera, its depth
-// readings and the floor plane known.
-PersonBlob Blob(const std::vector<Capsule>& figure) {
-  const PinholeCamera cam = PinholeCamera::KinectLike();
-  PersonBlob blob;
-  blob.status = DetectStatus::kOk;
-  blob.grid_step_px = 2;
-  blob.floor_in_sensor = tracker_test::LevelFloor();
-  blob.mask = ImageGray8(cam.width / 2, cam.height / 2, 1, 0);
-  blob.depth_m = Image<float>(cam.width / 2, cam.height / 2, 1, 0.f);
-  for (int v = 0; v < cam.height; v += 2)
-    for (int u = 0; u < cam.width; u += 2) {
-      const Eigen::Vector3d d(((u - cam.cx) / cam.fx), (v - cam.cy) / cam.fy, 1);
-      double t = std::numeric_limits<double>::infinity();
-      for (const Capsule& c : figure)
-        t = std::min(t, tracker_test::RayCapsule(d.normalized(), c.a, c.b, c.radius));
-      if (!std::isfinite(t)) continue;
-      const Eigen::Vector3d p = t * d.normalized();
-      blob.mask.at(u / 2, v / 2) = 255;
-      blob.depth_m.at(u / 2, v / 2) = static_cast<float>(p.z());
-      blob.points.push_back(p);
-      blob.pixels.emplace_back(u / 2, v / 2);
-    }
-  return blob;
+  return {{AboveFloor(0, 0.95, 3), AboveFloor(0, 1.45, 3), 0.17},
+          {AboveFloor(-0.09, 0.85, 3), left_ankle, r},
+          {AboveFloor(0.09, 0.85, 3), right_ankle, r}};
 }
 
 const PinholeCamera kCamera = PinholeCamera::KinectLike();
@@ -69,8 +34,8 @@ TEST(CrotchHeight, LegsApartShowTheGapUpToTheCrotch) {
   // Ankles 25 cm either side of the middle: between the legs the sensor sees the room up to
   // the trunk's lowest point, 0.78 m, on the middle line. Bound: the line is followed in 5 mm
   // steps and read on a grid of 2 px (1.2 cm at 3 m), so within 1.5 cm.
-  const Eigen::Vector3d left = At(-0.25, 0.08, 3), right = At(0.25, 0.08, 3);
-  const auto crotch = MeasureCrotchHeight(Blob(Figure(left, right)), kCamera, left, right);
+  const Eigen::Vector3d left = AboveFloor(-0.25, 0.08, 3), right = AboveFloor(0.25, 0.08, 3);
+  const auto crotch = MeasureCrotchHeight(SceneBlob(Figure(left, right)), kCamera, left, right);
   ASSERT_TRUE(crotch);
   EXPECT_NEAR(*crotch, 0.78, 0.015);
 }
@@ -78,22 +43,22 @@ TEST(CrotchHeight, LegsApartShowTheGapUpToTheCrotch) {
 TEST(CrotchHeight, LegsTogetherGiveNoMeasurement) {
   // Thick legs straight down from the hips touch: the first hit is a leg near the floor,
   // below min_gap_m.
-  const Eigen::Vector3d left = At(-0.09, 0.08, 3), right = At(0.09, 0.08, 3);
-  EXPECT_FALSE(MeasureCrotchHeight(Blob(Figure(left, right, 0.1)), kCamera, left, right));
+  const Eigen::Vector3d left = AboveFloor(-0.09, 0.08, 3), right = AboveFloor(0.09, 0.08, 3);
+  EXPECT_FALSE(MeasureCrotchHeight(SceneBlob(Figure(left, right, 0.1)), kCamera, left, right));
 }
 
 TEST(CrotchHeight, ALegInFrontOfTheGapGivesNoMeasurement) {
   // A stride along the line of sight: the near leg (its ankle at 2.6 m, under the middle)
   // hides the lines between the ankles, its surface 25-40 cm in front of their depth. The
   // least gap is left out (min_gap_m 0), so that only the depth test can refuse it.
-  const Eigen::Vector3d near = At(0, 0.08, 2.6), far = At(0, 0.08, 3.4);
-  const PersonBlob blob = Blob(Figure(near, far));
+  const Eigen::Vector3d near = AboveFloor(0, 0.08, 2.6), far = AboveFloor(0, 0.08, 3.4);
+  const PersonBlob blob = SceneBlob(Figure(near, far));
   EXPECT_FALSE(MeasureCrotchHeight(blob, kCamera, near, far, {.min_gap_m = 0}));
 }
 
 TEST(CrotchHeight, DegenerateInputGivesNoMeasurement) {
-  const Eigen::Vector3d left = At(-0.25, 0.08, 3), right = At(0.25, 0.08, 3);
-  const PersonBlob good = Blob(Figure(left, right));
+  const Eigen::Vector3d left = AboveFloor(-0.25, 0.08, 3), right = AboveFloor(0.25, 0.08, 3);
+  const PersonBlob good = SceneBlob(Figure(left, right));
   ASSERT_TRUE(MeasureCrotchHeight(good, kCamera, left, right));
   PersonBlob no_floor = good;
   no_floor.floor_in_sensor.reset();
@@ -105,7 +70,8 @@ TEST(CrotchHeight, DegenerateInputGivesNoMeasurement) {
   const Eigen::Vector3d nan(std::nan(""), 0, 3);
   EXPECT_FALSE(MeasureCrotchHeight(good, kCamera, nan, right));
   // Ankles behind the sensor: the line never projects.
-  const Eigen::Vector3d behind_l = At(-0.25, 0.08, -3), behind_r = At(0.25, 0.08, -3);
+  const Eigen::Vector3d behind_l = AboveFloor(-0.25, 0.08, -3),
+                        behind_r = AboveFloor(0.25, 0.08, -3);
   EXPECT_FALSE(MeasureCrotchHeight(good, kCamera, behind_l, behind_r));
   EXPECT_THROW(MeasureCrotchHeight(good, kCamera, left, right, {.step_m = 0}), CheckError);
 }

@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
 #include <vector>
 
 #include "capture-client/tracker/body_calibration.h"
@@ -16,51 +15,18 @@
 namespace reenact::capture {
 namespace {
 
-using tracker_test::kSensorHeight;
-
-struct Capsule {
-  Eigen::Vector3d a, b;  // sensor frame
-  double radius;
-};
-
-// A point `height` above the floor under the level sensor, at (x, z) of the sensor frame.
-Eigen::Vector3d At(double x, double height, double z) {
-  return Eigen::Vector3d(x, kSensorHeight - height, z);
-}
+using tracker_test::AboveFloor;
+using tracker_test::SceneBlob;
+using Capsule = tracker_test::SceneCapsule;
 
 // A figure at depth z standing on the floor, facing the sensor: a head (a sphere of radius
 // r, its top at 1.75 m), a neck (radius 0.45 r, from the chin 8 cm down) and a trunk (a
 // capsule of radius 0.17, its top 2 cm below the neck's bottom, wider than any head here).
 std::vector<Capsule> Figure(double r, double z = 3) {
   const double top = 1.75, chin = top - 2 * r, neck_bottom = chin - 0.08;
-  return {{At(0, top - r, z), At(0, top - r, z), r},
-          {At(0, chin + 0.2 * r, z), At(0, neck_bottom, z), 0.45 * r},
-          {At(0, neck_bottom - 0.02 - 0.17, z), At(0, 0.5, z), 0.17}};
-}
-
-// The person's blob as the detector gives it: every 2nd pixel of the Kinect-like camera that
-// sees the figure, the floor plane known.
-PersonBlob Blob(const std::vector<Capsule>& figure) {
-  const PinholeCamera cam = PinholeCamera::KinectLike();
-  PersonBlob blob;
-  blob.status = DetectStatus::kOk;
-  blob.grid_step_px = 2;
-  blob.floor_in_sensor = tracker_test::LevelFloor();
-  blob.mask = ImageGray8(cam.width / 2, cam.height / 2, 1, 0);
-  for (int v = 0; v < cam.height; v += 2)
-    for (int u = 0; u < cam.width; u += 2) {
-      const Eigen::Vector3d d =
-          Eigen::Vector3d((u - cam.cx) / cam.fx, (v - cam.cy) / cam.fy, 1).normalized();
-      double t = std::numeric_limits<double>::infinity();
-      for (const Capsule& c : figure)
-        t = std::min(t, tracker_test::RayCapsule(d, c.a, c.b, c.radius));
-      if (std::isfinite(t)) {
-        blob.mask.at(u / 2, v / 2) = 255;
-        blob.points.push_back(t * d);
-        blob.pixels.emplace_back(u / 2, v / 2);
-      }
-    }
-  return blob;
+  return {{AboveFloor(0, top - r, z), AboveFloor(0, top - r, z), r},
+          {AboveFloor(0, chin + 0.2 * r, z), AboveFloor(0, neck_bottom, z), 0.45 * r},
+          {AboveFloor(0, neck_bottom - 0.02 - 0.17, z), AboveFloor(0, 0.5, z), 0.17}};
 }
 
 const double kFy = PinholeCamera::KinectLike().fy;
@@ -69,7 +35,7 @@ const double kSlice = 2 * 2 * 3.0 / kFy;
 
 TEST(HeadSize, ASphereHeadGivesItsRadiusAndItsNeck) {
   for (const double r : {0.09, 0.13}) {
-    const auto head = MeasureHeadSize(Blob(Figure(r)), kFy);
+    const auto head = MeasureHeadSize(SceneBlob(Figure(r)), kFy);
     ASSERT_TRUE(head) << r;
     // The widest slice holds the equator; its outermost grid columns lie within one column
     // (1.2 cm) inside the outline on either side.
@@ -88,8 +54,8 @@ TEST(HeadSize, ASphereHeadGivesItsRadiusAndItsNeck) {
 TEST(HeadSize, TheNeckDepthGrowsWithTheHead) {
   // Two heads 9 and 13 cm in radius on the same body: the neck depths differ by about 1.53
   // times the 4 cm, give or take a slice.
-  const auto small = MeasureHeadSize(Blob(Figure(0.09)), kFy);
-  const auto large = MeasureHeadSize(Blob(Figure(0.13)), kFy);
+  const auto small = MeasureHeadSize(SceneBlob(Figure(0.09)), kFy);
+  const auto large = MeasureHeadSize(SceneBlob(Figure(0.13)), kFy);
   ASSERT_TRUE(small && large);
   EXPECT_NEAR(large->neck_below_top_m - small->neck_below_top_m, 1.53 * 0.04, kSlice);
 }
@@ -98,20 +64,21 @@ TEST(HeadSize, ArmsRaisedAboveTheHeadHideTheNeck) {
   // Forearms held up either side of the head, 25 cm out, up to 2.0 m: every slice from the
   // hands down to the shoulders is as wide as the arms apart, so no slice narrows.
   std::vector<Capsule> figure = Figure(0.1);
-  for (const double x : {-0.25, 0.25}) figure.push_back({At(x, 1.35, 3), At(x, 2.0, 3), 0.05});
-  EXPECT_FALSE(MeasureHeadSize(Blob(figure), kFy));
+  for (const double x : {-0.25, 0.25})
+    figure.push_back({AboveFloor(x, 1.35, 3), AboveFloor(x, 2.0, 3), 0.05});
+  EXPECT_FALSE(MeasureHeadSize(SceneBlob(figure), kFy));
 }
 
 TEST(HeadSize, AHeadCutByTheImagesEdgeGivesNoMeasurement) {
   // At 0.8 m the level sensor (1.3 m high, 255 px above the principal point at f = 516.5 px)
   // sees up to 1.3 + 0.8 * 255 / 516.5 = 1.69 m: the top of the 1.75 m head is cut, while the
   // chin and the neck (1.55 m and below) are in view. At 1.2 m it sees up to 1.89 m.
-  EXPECT_FALSE(MeasureHeadSize(Blob(Figure(0.1, 0.8)), kFy));
-  EXPECT_TRUE(MeasureHeadSize(Blob(Figure(0.1, 1.2)), kFy));
+  EXPECT_FALSE(MeasureHeadSize(SceneBlob(Figure(0.1, 0.8)), kFy));
+  EXPECT_TRUE(MeasureHeadSize(SceneBlob(Figure(0.1, 1.2)), kFy));
 }
 
 TEST(HeadSize, DegenerateBlobsGiveNoMeasurement) {
-  const PersonBlob good = Blob(Figure(0.1));
+  const PersonBlob good = SceneBlob(Figure(0.1));
   ASSERT_TRUE(MeasureHeadSize(good, kFy));
   PersonBlob no_floor = good;
   no_floor.floor_in_sensor.reset();
@@ -155,7 +122,7 @@ TEST(HeadSize, ScalingTheHeadKeepsTheStandingHeightAndTheLegs) {
 }
 
 TEST(HeadSize, TheProportionalBodysHeadFollowsTheMeasuredNeckDepth) {
-  PersonBlob blob = Blob(Figure(0.1));
+  PersonBlob blob = SceneBlob(Figure(0.1));
   blob.top_height_m = 1.75;
   const CalibrationOptions options;  // average depth 0.108 H, noise 0.15, scale in [0.75, 1.7]
   const BodyShape average = BodyShape::FromHeight(1.75);
