@@ -1,5 +1,6 @@
 #include "capture-client/tracker/tracker_skeleton_source.h"
 
+#include <iomanip>
 #include <sstream>
 
 namespace reenact::capture {
@@ -25,8 +26,11 @@ std::string TrackerSourceStats::Describe() const {
   s << "tracker: " << tracked << " of " << frames << " frames tracked; started at frame "
     << calibration_frame
     << (from_calibration_pose ? " from the calibration pose"
-                              : " with average proportions (no calibration pose seen)")
-    << "; " << losses << " losses, " << recoveries << " recoveries";
+                              : " without the calibration pose: average proportions");
+  if (!from_calibration_pose)
+    s << ", the head " << std::fixed << std::setprecision(2) << head_scale << " and the legs "
+      << leg_scale << " times the average's as measured from the silhouette";
+  s << "; " << losses << " losses, " << recoveries << " recoveries";
   return s.str();
 }
 
@@ -59,6 +63,13 @@ Expected<std::optional<Skeleton>> TrackerSkeletonSource::Track(int64_t index,
     stats_.calibration_frame = static_cast<int>(index);
     stats_.from_calibration_pose =
         tracker_->calibration() && tracker_->calibration()->from_calibration_pose;
+  }
+  const auto& calibration = tracker_->calibration();
+  if (calibration && !calibration->from_calibration_pose) {
+    const BodyShape average = BodyShape::FromHeight(calibration->height_m);
+    stats_.head_scale = calibration->shape.head_radius / average.head_radius;
+    stats_.leg_scale =
+        (calibration->shape.thigh + calibration->shape.shin) / (average.thigh + average.shin);
   }
   if (r.recovered) ++stats_.recoveries;
   if (before == TrackState::kTracking && r.state == TrackState::kLost) ++stats_.losses;

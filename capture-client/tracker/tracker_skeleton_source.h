@@ -19,6 +19,10 @@ struct TrackerSourceStats {
   int tracked = 0;             // frames with a skeleton
   int calibration_frame = -1;  // source frame index of the (first) calibration, -1 = none
   bool from_calibration_pose = false;
+  // A start without the calibration pose: the body's head (radius) and legs (thigh + shin)
+  // against the average proportions of its height, as measured from the silhouette
+  // (head_size.h, crotch_height.h) and fitted on the fly; 1 otherwise.
+  double head_scale = 1, leg_scale = 1;
   int losses = 0, recoveries = 0;
   // Frames per detection outcome (Index: DetectStatus).
   std::array<int, 4> detect{};

@@ -34,6 +34,26 @@ TEST(RecordTrack, SyntheticCalibrationPoseIsTrackedAndRecorded) {
   ASSERT_EQ(info.exit_code, 0) << info.err;
 }
 
+TEST(RecordTrack, AWalkWithoutTheCalibrationPoseReportsTheMeasuredBody) {
+  // The procedural body walking CMU 131_02 never shows the calibration pose: tracking starts
+  // after 15 frames with average proportions, and the head and legs measured from the
+  // silhouette read average for this body of average proportions (its readings lie within
+  // the measurements' noise allowances; docs/measurements.md).
+  TempDir tmp;
+  const std::string clip = tmp.path() + "/clip";
+  const std::string bvh =
+      std::string(REENACT_SOURCE_DIR) + "/../shared/data/mocap/cmu-131_02-walk.bvh";
+  if (!std::filesystem::exists(bvh)) GTEST_SKIP() << bvh << " is absent (shared data)";
+  const auto record = RunProcess({kCapture, "record", "--source", "synthetic:bvh:" + bvh,
+                                  "--frames", "60", "--skeleton", "track", "--out", clip},
+                                 std::chrono::seconds(300));
+  ASSERT_EQ(record.exit_code, 0) << record.err;
+  EXPECT_NE(record.out.find("started at frame 14 without the calibration pose: average "
+                            "proportions, the head 1.00 and the legs 1.00 times the average's"),
+            std::string::npos)
+      << record.out;
+}
+
 TEST(RecordTrack, RoomWithoutAPersonFailsClearlyAndLeavesNothing) {
   if (!std::filesystem::exists(kOni)) GTEST_SKIP() << kOni << " is absent (shared data)";
   TempDir tmp;
