@@ -44,7 +44,9 @@ std::optional<double> MeasureCrotchHeight(const PersonBlob& blob, const PinholeC
                                           const CrotchHeightOptions& options) {
   options.Check();
   if (blob.status != DetectStatus::kOk || !blob.floor_in_sensor || blob.grid_step_px < 1 ||
-      blob.mask.width == 0 || !left_ankle.allFinite() || !right_ankle.allFinite())
+      blob.mask.width == 0 || blob.depth_m.width != blob.mask.width ||
+      blob.depth_m.height != blob.mask.height || !left_ankle.allFinite() ||
+      !right_ankle.allFinite())
     return std::nullopt;
   const Plane3& floor = *blob.floor_in_sensor;
   const Eigen::Vector3d up = floor.normal.normalized();

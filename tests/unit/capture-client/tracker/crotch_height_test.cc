@@ -67,6 +67,9 @@ TEST(CrotchHeight, DegenerateInputGivesNoMeasurement) {
   no_person.status = DetectStatus::kNoPerson;
   EXPECT_FALSE(MeasureCrotchHeight(no_person, kCamera, left, right));
   EXPECT_FALSE(MeasureCrotchHeight(PersonBlob{}, kCamera, left, right));
+  PersonBlob no_depth = good;  // a mask without its depth readings
+  no_depth.depth_m = Image<float>();
+  EXPECT_FALSE(MeasureCrotchHeight(no_depth, kCamera, left, right));
   const Eigen::Vector3d nan(std::nan(""), 0, 3);
   EXPECT_FALSE(MeasureCrotchHeight(good, kCamera, nan, right));
   // Ankles behind the sensor: the line never projects.
