@@ -171,6 +171,7 @@ std::string MachineLine(const std::string& gl_renderer) {
 
 std::string QualityMarkdown(const QualityOptions& options, const QualityRun& run,
                             const std::string& markdown_path, const std::string& machine_line) {
+  const std::string lost_frames = LostFramesNote(run);
   std::ostringstream md;
   md << "# Image quality against ground truth\n\n"
      << "Written by `reenact-eval quality` (`make eval` runs the standard set); do not edit by "
@@ -191,7 +192,7 @@ std::string QualityMarkdown(const QualityOptions& options, const QualityRun& run
      << (options.tracked_skeletons
              ? ", the recorded skeletons from our depth tracker (the ground truth exact)"
              : std::string())
-     << (LostFramesNote(run).empty() ? "" : " (" + LostFramesNote(run) + ")")
+     << (lost_frames.empty() ? "" : " (" + lost_frames + ")")
      << (options.flat_lighting ? ", the subject lit flat (no shading) in recording and truth"
                                : std::string())
      << "; " << EveryKth(options.frame_step) << " is reenacted at " << options.width << "x"
