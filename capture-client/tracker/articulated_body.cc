@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "common/error/check.h"
 
@@ -40,6 +41,34 @@ double ConeLimit(S s, const JointLimits& l) {
     default:
       return l.knee_max;
   }
+}
+
+// The twist limit of segment s (radians; pi and beyond: none).
+double TwistLimit(S s, const JointLimits& l) {
+  switch (s) {
+    case S::kLowerSpine:
+    case S::kChest:
+      return l.spine_twist_max;
+    case S::kLeftThigh:
+    case S::kRightThigh:
+      return l.hip_twist_max;
+    default:
+      return std::numbers::pi;
+  }
+}
+
+// local = swing * Rz(twist) with the twist clamped to [-limit, limit], the swing kept. A swing
+// of half a turn about an axis across z leaves the twist undefined; the rotation is kept.
+void ClampTwist(Eigen::Matrix3d* local, double limit) {
+  const Eigen::Quaterniond q(*local);
+  const double n = std::hypot(q.w(), q.z());
+  if (!(n > 1e-9)) return;
+  const Eigen::Quaterniond twist(q.w() / n, 0, 0, q.z() / n);
+  const double angle = std::remainder(2 * std::atan2(twist.z(), twist.w()), 2 * std::numbers::pi);
+  if (std::abs(angle) <= limit) return;
+  *local =
+      (q * twist.conjugate()).toRotationMatrix() *
+      Eigen::AngleAxisd(std::copysign(limit, angle), Eigen::Vector3d::UnitZ()).toRotationMatrix();
 }
 
 // A rotation whose z axis is z (unit) and whose x axis is as near x_hint as possible; when
@@ -256,6 +285,8 @@ void ArticulatedBody::Clamp(ArticulatedPose* pose, const JointLimits& limits) {
       pose->hinge_angle[s] = std::clamp(pose->hinge_angle[s], 0.0, limit);
       continue;
     }
+    if (const double twist = TwistLimit(seg, limits); twist < std::numbers::pi)
+      ClampTwist(&pose->local[s], twist);
     Eigen::AngleAxisd aa(pose->local[s]);
     if (aa.angle() > limit) pose->local[s] = Eigen::AngleAxisd(limit, aa.axis()).toRotationMatrix();
   }

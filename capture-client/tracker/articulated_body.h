@@ -10,9 +10,10 @@
 // segment s has a local rotation local[s] relative to its parent, turning about its proximal
 // joint:  R_s = R_parent(s) * local[s],  joint(s) = joint(parent) + R_parent * offset(s).
 // Ball joints (spine, neck, shoulders, hips) turn freely up to a cone of max_angle around the
-// rest orientation; elbows and knees are hinges about the segment's local y axis with one
-// angle in [0, max_flexion]: elbows bend the forearm forwards (local[s] = Ry(-angle)), knees
-// the shin backwards (local[s] = Ry(+angle)).
+// rest orientation; the spine's two segments and the thighs also twist about their own axis
+// (local z) by at most a twist limit (local[s] = swing * Rz(twist), the twist clamped); elbows and
+// knees are hinges about the segment's local y axis with one angle in [0, max_flexion]: elbows bend
+// the forearm forwards (local[s] = Ry(-angle)), knees the shin backwards (local[s] = Ry(+angle)).
 //
 // Parameters of a Gauss-Newton step (ParameterCount() = 31): root translation (3), root
 // rotation (3, world axes about the waist), then per segment in Segment order 3 (ball, world
@@ -126,6 +127,13 @@ struct JointLimits {
   double hip_max = 2.2;
   double elbow_max = 2.6;  // flexion, about 150 degrees
   double knee_max = 2.6;
+  // Axial rotation, each about the segment's own axis. The two spine segments together turn
+  // the shoulders up to 57 degrees from the pelvis, about the thoracolumbar spine's range to
+  // either side; the thigh turns 46 degrees inwards or outwards, about the hip's range. Without
+  // them the cones allow 100 and 126 degrees: a CesiumMan walk seen from the side was fitted
+  // with the pelvis turned 40-60 degrees from the shoulders (docs/measurements.md).
+  double spine_twist_max = 0.5;
+  double hip_twist_max = 0.8;
 };
 
 // Forward kinematics result: each segment's sensor_from_segment, and the skeleton.
@@ -155,7 +163,8 @@ class ArticulatedBody {
   ArticulatedPose Step(const ArticulatedPose& pose, const PosedBody3& posed,
                        const Eigen::VectorXd& delta, const JointLimits& limits) const;
 
-  // Clamps every joint into its limit (ball joints: their rotation angle to the cone's edge).
+  // Clamps every joint into its limit (ball joints: the twist first where limited, then their
+  // rotation angle to the cone's edge).
   static void Clamp(ArticulatedPose* pose, const JointLimits& limits);
 
   // The pose whose skeleton is nearest (least squares over the joints) to a target skeleton

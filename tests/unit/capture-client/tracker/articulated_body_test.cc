@@ -113,8 +113,13 @@ TEST(ArticulatedBody, StepsAreClampedToTheJointLimits) {
   delta[ArticulatedBody::ParameterIndex(BodySegment::kRightShin)] = 5.0;     // beyond 150 deg
   delta.segment<3>(ArticulatedBody::ParameterIndex(BodySegment::kHead)) =
       Eigen::Vector3d(2.0, 0, 0);  // head turned 115 degrees
+  delta.segment<3>(ArticulatedBody::ParameterIndex(BodySegment::kChest)) =
+      Eigen::Vector3d(0, 0, 2.0);  // shoulders turned 115 degrees from the pelvis
   const JointLimits limits;
   const ArticulatedPose next = body.Step(pose, body.Pose(pose), delta, limits);
+  EXPECT_TRUE(next.local[static_cast<int>(BodySegment::kChest)].isApprox(
+      Eigen::AngleAxisd(limits.spine_twist_max, Eigen::Vector3d::UnitZ()).toRotationMatrix(),
+      1e-12));
   EXPECT_EQ(next.hinge_angle[static_cast<int>(BodySegment::kLeftForearm)], 0.0);
   EXPECT_EQ(next.hinge_angle[static_cast<int>(BodySegment::kRightShin)], limits.knee_max);
   EXPECT_NEAR(Eigen::AngleAxisd(next.local[static_cast<int>(BodySegment::kHead)]).angle(),
@@ -123,6 +128,45 @@ TEST(ArticulatedBody, StepsAreClampedToTheJointLimits) {
   const ArticulatedPose same = body.Step(
       pose, body.Pose(pose), Eigen::VectorXd::Zero(ArticulatedBody::kParameterCount), limits);
   EXPECT_LT(MeanJointError(body.Pose(same).skeleton, body.Pose(pose).skeleton), 1e-12);
+}
+
+TEST(ArticulatedBody, TheSpineAndThighsTwistOnlyWithinTheirLimits) {
+  // A ball joint's rotation as swing * twist: Rx (its axis across the segment's z) swings,
+  // Rz twists; the clamp keeps the swing and cuts the twist to the limit.
+  const auto rx = [](double a) {
+    return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  };
+  const auto rz = [](double a) {
+    return Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  };
+  const JointLimits limits;
+  ASSERT_LT(limits.spine_twist_max, 1.0);
+  ASSERT_LT(limits.hip_twist_max, 1.4);
+  ArticulatedPose pose;
+  const auto local = [&pose](BodySegment s) -> Eigen::Matrix3d& {
+    return pose.local[static_cast<int>(s)];
+  };
+  local(BodySegment::kChest) = rz(-1.0);
+  local(BodySegment::kLowerSpine) = rz(0.5 * limits.spine_twist_max);
+  local(BodySegment::kLeftThigh) = rx(0.5) * rz(1.4);
+  local(BodySegment::kRightThigh) = rx(kPi);  // a half-turn swing: the twist is undefined
+  local(BodySegment::kHead) = rz(1.0);        // the neck: the cone only
+  local(BodySegment::kLeftUpperArm) = rz(2.0);
+  const ArticulatedPose before = pose;
+  ArticulatedBody::Clamp(&pose, limits);
+  EXPECT_TRUE(local(BodySegment::kChest).isApprox(rz(-limits.spine_twist_max), 1e-12));
+  EXPECT_TRUE(local(BodySegment::kLowerSpine).isApprox(rz(0.5 * limits.spine_twist_max), 1e-12));
+  EXPECT_TRUE(local(BodySegment::kLeftThigh).isApprox(rx(0.5) * rz(limits.hip_twist_max), 1e-12));
+  const Eigen::Matrix3d& right = local(BodySegment::kRightThigh);
+  EXPECT_TRUE(right.allFinite());
+  EXPECT_NEAR(Eigen::AngleAxisd(right).angle(), limits.hip_max, 1e-9);
+  for (const BodySegment s : {BodySegment::kHead, BodySegment::kLeftUpperArm})
+    EXPECT_TRUE(local(s).isApprox(before.local[static_cast<int>(s)], 1e-12));
+  // Twisted back within the limits, nothing more changes.
+  const ArticulatedPose clamped = pose;
+  ArticulatedBody::Clamp(&pose, limits);
+  for (int s = 0; s < kBodySegmentCount; ++s)
+    EXPECT_TRUE(pose.local[s].isApprox(clamped.local[s], 1e-12)) << "segment " << s;
 }
 
 TEST(ArticulatedBody, ExpRotationOfZeroIsIdentity) {
