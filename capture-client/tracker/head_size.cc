@@ -23,12 +23,13 @@ std::optional<HeadSize> MeasureHeadSize(const PersonBlob& blob, double camera_fy
     return std::nullopt;
   const Plane3& floor = *blob.floor_in_sensor;
   const Eigen::Vector3d up = floor.normal.normalized();
-  double top = -std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector3d& p : blob.points) top = std::max(top, floor.SignedDistance(p));
+  std::vector<double> height(blob.points.size());
+  for (size_t i = 0; i < blob.points.size(); ++i) height[i] = floor.SignedDistance(blob.points[i]);
+  const double top = *std::max_element(height.begin(), height.end());
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   int n = 0;
-  for (const Eigen::Vector3d& p : blob.points)
-    if (floor.SignedDistance(p) >= top - options.band_m) centroid += p, ++n;
+  for (size_t i = 0; i < blob.points.size(); ++i)
+    if (height[i] >= top - options.band_m) centroid += blob.points[i], ++n;
   centroid /= n;
   const Eigen::Vector3d across = up.cross(centroid - up * up.dot(centroid));
   if (across.norm() < 1e-6 * centroid.norm() || centroid.z() <= 0) return std::nullopt;
@@ -40,11 +41,11 @@ std::optional<HeadSize> MeasureHeadSize(const PersonBlob& blob, double camera_fy
   std::vector<double> lo(slices, std::numeric_limits<double>::infinity());
   std::vector<double> hi(slices, -std::numeric_limits<double>::infinity());
   std::vector<int> count(slices, 0);
-  for (const Eigen::Vector3d& p : blob.points) {
-    const double below = top - floor.SignedDistance(p);
+  for (size_t i = 0; i < blob.points.size(); ++i) {
+    const double below = top - height[i];
     if (below >= options.band_m) continue;
     const int k = std::min(slices - 1, static_cast<int>(below / slice_m));
-    const double u = u_axis.dot(p);
+    const double u = u_axis.dot(blob.points[i]);
     lo[k] = std::min(lo[k], u);
     hi[k] = std::max(hi[k], u);
     ++count[k];
@@ -64,8 +65,7 @@ std::optional<HeadSize> MeasureHeadSize(const PersonBlob& blob, double camera_fy
       const Eigen::Vector2i& px = blob.pixels[i];
       const bool on_border = px.x() <= 0 || px.y() <= 0 || px.x() >= blob.mask.width - 1 ||
                              px.y() >= blob.mask.height - 1;
-      if (on_border && top - floor.SignedDistance(blob.points[i]) < (neck + 1) * slice_m)
-        return std::nullopt;
+      if (on_border && top - height[i] < (neck + 1) * slice_m) return std::nullopt;
     }
   return HeadSize{.half_width_m = 0.5 * widest, .neck_below_top_m = (neck + 0.5) * slice_m};
 }
