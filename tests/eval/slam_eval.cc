@@ -57,12 +57,6 @@ Expected<std::unique_ptr<TumSource>> OpenSequence(const SlamEvalOptions& options
   return TumSource::Open(options.tum_dir, o);
 }
 
-double Percentile90(std::vector<double> v) {
-  if (v.empty()) return kNaN;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<size_t>(std::ceil(0.9 * v.size())) - 1)];
-}
-
 // A method's poses (world_from_sensor, nullopt when it had none) and per-frame times.
 struct Trajectory {
   std::vector<std::optional<Eigen::Isometry3d>> poses;
@@ -104,7 +98,7 @@ void Score(const Trajectory& t, const std::vector<std::optional<Eigen::Isometry3
   r.rpe_m = rpe_n > 0 ? std::sqrt(rpe_t2 / rpe_n) : kNaN;
   r.rpe_deg = rpe_n > 0 ? std::sqrt(rpe_r2 / rpe_n) : kNaN;
   r.ms_per_frame = t.ms.empty() ? kNaN : UpperMedian(t.ms);
-  r.ms_p90 = Percentile90(t.ms);
+  r.ms_p90 = t.ms.empty() ? kNaN : Percentile(t.ms, 0.9);
 }
 
 using Clock = std::chrono::steady_clock;

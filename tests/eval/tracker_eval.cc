@@ -80,13 +80,6 @@ double Mean(const std::vector<double>& v) {
   return v.empty() ? 0 : std::accumulate(v.begin(), v.end(), 0.0) / v.size();
 }
 
-double Percentile90(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const size_t rank = static_cast<size_t>(std::ceil(0.9 * v.size()));
-  return v[std::max<size_t>(rank, 1) - 1];
-}
-
 struct CaseSum {
   int frames = 0, tracked = 0;
   double err = 0;
@@ -172,7 +165,7 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
   }
   row.tracked_rate = row.frames ? static_cast<double>(row.tracked) / row.frames : 0;
   row.mpjpe_cm = 100 * Mean(errors);
-  row.p90_cm = 100 * Percentile90(errors);
+  row.p90_cm = errors.empty() ? 0 : 100 * Percentile(errors, 0.9);
   if (!aligned_errors.empty()) row.aligned_mpjpe_cm = 100 * Mean(aligned_errors);
   if (!headings.empty()) {
     row.heading_deg = Median(headings);

@@ -29,5 +29,26 @@ TEST(Median, EmptySetIsABug) {
   EXPECT_THROW(UpperMedian({}), CheckError);
 }
 
+TEST(Percentile, NearestRankOfTenValues) {
+  // 1..10 shuffled: at least 90 % of them are <= 9, and 9 is the smallest such value.
+  const std::vector<double> v = {7, 3, 10, 1, 9, 4, 2, 8, 6, 5};
+  EXPECT_EQ(Percentile(v, 0.9), 9);
+  EXPECT_EQ(Percentile(v, 0.91), 10);
+  EXPECT_EQ(Percentile(v, 0.5), UpperMedian({1, 2, 3, 4, 5, 6, 7, 8, 9}));
+  EXPECT_EQ(Percentile(v, 0.0), 1);
+  EXPECT_EQ(Percentile(v, 1.0), 10);
+}
+
+TEST(Percentile, OneValueIsEveryPercentile) {
+  EXPECT_EQ(Percentile({4}, 0.0), 4);
+  EXPECT_EQ(Percentile({4}, 0.9), 4);
+}
+
+TEST(Percentile, EmptySetOrShareOutsideZeroToOneIsABug) {
+  EXPECT_THROW(Percentile({}, 0.9), CheckError);
+  EXPECT_THROW(Percentile({1, 2}, 1.5), CheckError);
+  EXPECT_THROW(Percentile({1, 2}, -0.1), CheckError);
+}
+
 }  // namespace
 }  // namespace reenact
