@@ -9,9 +9,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "tests/eval/quality_eval.h"
 #include "tests/eval/quality_report.h"
@@ -240,6 +243,55 @@ TEST(GlQualityEval, FramesTheTrackerLosesAreLeftOutAndTheRestComparedAtTheirOwnT
   const auto e = h->Evaluate(Thesis(), 0, clip_frames - 1);
   ASSERT_TRUE(e.ok()) << e.error().message;
   EXPECT_GT(e->comparison.iou, 0.5);
+}
+
+TEST(GlQualityEval, ATrackerThatFindsNoOneIsATrackingErrorAndLeavesNothing) {
+  // CMU 131_01's walk with the whole body turned onto the floor (root pitched 90 degrees, the
+  // hips 17 cm up): a person lying down. The tracker follows people standing on the floor
+  // (person_detector.h), so it gives no skeleton on any frame, and the recorder stores no
+  // frame without one: the run must say so instead of comparing an empty clip.
+  const fs::path data = fs::path(__FILE__).parent_path().parent_path().parent_path().parent_path() /
+                        "shared" / "data";
+  const fs::path walk = data / "mocap" / "cmu-131_01-walk.bvh";
+  if (!fs::exists(walk)) GTEST_SKIP() << walk << " not present";
+  const fs::path dir =
+      fs::temp_directory_path() / ("reenact-gl-quality-lying-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path lying = dir / "lying.bvh";
+  {
+    std::ifstream in(walk);
+    std::ofstream out(lying);
+    std::string line;
+    // Its lines may end in CR LF.
+    while (std::getline(in, line) && line.rfind("MOTION", 0) != 0) out << line << "\n";
+    std::getline(in, line);  // Frames: N
+    std::string frame_time;
+    std::getline(in, frame_time);
+    constexpr int kFrames = 40;  // 120 Hz: 10 frames at the scene's 30
+    out << "MOTION\nFrames: " << kFrames << "\n" << frame_time << "\n";
+    for (int f = 0; f < kFrames && std::getline(in, line); ++f) {
+      std::istringstream values(line);
+      std::vector<std::string> v{std::istream_iterator<std::string>(values), {}};
+      ASSERT_GT(v.size(), 6u);
+      v[1] = "3";   // Yposition, CMU units of 5.644 cm
+      v[5] = "90";  // Xrotation
+      for (const std::string& x : v) out << x << " ";
+      out << "\n";
+    }
+  }
+  QualityOptions options;
+  options.scenario = "bvh:" + lying.string();
+  options.tracked_skeletons = true;
+  options.views_deg = {0};
+  const auto h = QualityHarness::Create(options);
+  fs::remove_all(dir);
+  ASSERT_FALSE(h.ok());
+  EXPECT_EQ(h.error().code, "tracking");
+  EXPECT_NE(h.error().message.find("no skeleton on any of the 10 frames"), std::string::npos)
+      << h.error().message;
+  EXPECT_NE(h.error().message.find("no person found"), std::string::npos) << h.error().message;
+  EXPECT_FALSE(
+      fs::exists(fs::temp_directory_path() / ("reenact-eval-" + std::to_string(::getpid()))));
 }
 
 TEST(GlQualityEval, ImagePairBeyondTheClipIsRefused) {
