@@ -77,6 +77,7 @@ void SkeletonTrackerOptions::Check() const {
                     min_leg_scale > 0 && min_leg_scale <= 1 && max_leg_scale >= 1,
                 "need min_crotch_frames >= 1, average_crotch_ratio > 0, leg_scale_noise >= 0 "
                 "and 0 < min_leg_scale <= 1 <= max_leg_scale");
+  torso_depth.Check();
   REENACT_CHECK(full_support_ratio > 0 && full_support_ratio <= 1, "full_support_ratio in (0, 1]");
   REENACT_CHECK(min_confidence > 0 && min_confidence <= 1, "min_confidence in (0, 1]");
 }
@@ -98,7 +99,8 @@ SkeletonTracker::SkeletonTracker(const PinholeCamera& depth_camera, double depth
     : detector_(depth_camera, depth_scale_m, options.detect),
       camera_(depth_camera),
       options_(options),
-      travel_(options.travel) {
+      travel_(options.travel),
+      torso_depth_(options.torso_depth) {
   options.Check();
 }
 
@@ -118,6 +120,7 @@ void SkeletonTracker::Reset() {
   motion_poses_.clear();
   since_motion_frame_ = 0;
   crotch_heights_.clear();
+  torso_depth_.Clear();
   detector_.ResetFloor();
 }
 
@@ -360,16 +363,28 @@ void SkeletonTracker::CollectMotionFrame(const BodyFitResult& fit, const BodyObs
   const MultiFrameShapeFit sf =
       FitBodyShapeFrames(body_->shape(), motion_poses_, observations, calibration_->height_m,
                          options_.fit, options_.calibration.shape, options_.limits);
-  body_.emplace(sf.shape);
-  calibration_->shape = sf.shape;
+  AdoptShape(sf.shape);
   calibration_->motion_frames = static_cast<int>(motion_obs_.size());
-  const auto lengths = sf.shape.PartLengths();
-  const auto radii = sf.shape.PartRadii();
-  for (int i = 0; i < kBodyPartCount; ++i) calibration_->radius_ratio[i] = radii[i] / lengths[i];
   pose_ = sf.poses.back();
   motion_obs_.clear();
   motion_poses_.clear();
   crotch_heights_.clear();
+}
+
+void SkeletonTracker::AdoptShape(const BodyShape& shape) {
+  body_.emplace(shape);
+  calibration_->shape = shape;
+  const auto lengths = shape.PartLengths();
+  const auto radii = shape.PartRadii();
+  for (int i = 0; i < kBodyPartCount; ++i) calibration_->radius_ratio[i] = radii[i] / lengths[i];
+}
+
+void SkeletonTracker::CollectTorsoWidths(const BodyFitResult& fit, const PersonBlob& blob) {
+  if (!options_.measure_torso_depth || torso_depth_.done()) return;
+  const std::optional<double> half_depth =
+      torso_depth_.Add(MeasureTrunkWidths(*body_, fit.posed, blob, camera_, options_.torso_depth));
+  if (half_depth)
+    AdoptShape(WithTorsoDepth(body_->shape(), *half_depth, options_.torso_depth.min_depth_ratio));
 }
 
 void SkeletonTracker::CollectCrotchHeight(const BodyFitResult& fit, const PersonBlob& blob) {
@@ -525,6 +540,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
   if (out.good_fit) {
     CollectMotionFrame(fit, obs);
     CollectCrotchHeight(fit, blob);
+    CollectTorsoWidths(fit, blob);
   }
   out.skeleton = WithConfidence(fit, obs, options_.fit.inlier_m, out.good_fit);
   out.state = state_;

@@ -11,7 +11,9 @@
 //    neck depth measured on those frames (head_size.h), placed as when recovering from the
 //    silhouette (below); its bone lengths are less exact. Once it walks, its legs are scaled
 //    by the crotch's height seen between them (crotch_height.h) and its lengths fitted over
-//    frames with the legs apart (motion_calibration_frames, below).
+//    frames with the legs apart (motion_calibration_frames, below). Either way the trunk's
+//    depth, which a front view does not show, is measured once the subject has turned side-on
+//    (torso_depth.h, measure_torso_depth below).
 //  - Tracking: detect the person near its previous centroid (of the points the last fit
 //    explained, so that an object once merged with the person does not pull it; across the
 //    detector's larger tracking_merge_step_m, so a hand behind the head stays), keep the points
@@ -67,6 +69,7 @@
 #include "capture-client/tracker/limb_search.h"
 #include "capture-client/tracker/limb_swap.h"
 #include "capture-client/tracker/person_detector.h"
+#include "capture-client/tracker/torso_depth.h"
 #include "common/image/image.h"
 #include "common/skeleton/skeleton.h"
 
@@ -190,6 +193,12 @@ struct SkeletonTrackerOptions {
   double leg_scale_noise = 0.05;
   double min_leg_scale = 0.8;
   double max_leg_scale = 1.2;
+  // The trunk's depth from side views (torso_depth.h), calibrated and uncalibrated starts
+  // alike: once torso_depth.side_frames tracked frames with good fits have seen the trunk
+  // within torso_depth.max_side_deg of side-on, the trunk's capsules take the measured depth,
+  // their breadth kept; then fixed. false: the depth of the calibration (or the proportions).
+  bool measure_torso_depth = true;
+  TorsoDepthOptions torso_depth;
   double full_support_ratio = 0.5;  // (0, 1]
   double min_confidence = 0.05;     // (0, 1]: tracked joints are never reported missing
 
@@ -284,6 +293,11 @@ class SkeletonTracker {
   // Crotch heights (crotch_height.h) of the tracked frames before the on-the-fly calibration.
   std::vector<double> crotch_heights_;
   void CollectCrotchHeight(const BodyFitResult& fit, const PersonBlob& blob);
+  // The side views of the trunk (measure_torso_depth).
+  TorsoDepthCollector torso_depth_;
+  void CollectTorsoWidths(const BodyFitResult& fit, const PersonBlob& blob);
+  // Replaces the body's shape (same bone lengths or new ones) in the body and the calibration.
+  void AdoptShape(const BodyShape& shape);
   int heading_cooldown_ = 0;
   // Tracked frames since a start whose heading came from the silhouette (front_check_*).
   int frames_since_silhouette_start_ = -1;  // -1: none

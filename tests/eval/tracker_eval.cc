@@ -173,6 +173,10 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
                                                           [](double h) { return h > 90; })) /
                         headings.size();
   }
+  if (const auto& c = tracker.calibration()) {
+    row.torso_depth_cm = 200 * c->shape.torso_radius;
+    row.torso_breadth_cm = 200 * (c->shape.torso_radius + c->shape.torso_half_spread);
+  }
   row.ms_per_frame = ms.empty() ? 0 : Median(ms);
   row.cpu_ms_per_frame = cpu.empty() ? 0 : Median(cpu);
   return row;
@@ -287,6 +291,7 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
         .Add("losses", static_cast<long long>(r.losses))
         .Add("recoveries", static_cast<long long>(r.recoveries));
     if (r.aligned_mpjpe_cm) row.Add("aligned_mpjpe_cm", *r.aligned_mpjpe_cm);
+    row.Add("torso_depth_cm", r.torso_depth_cm).Add("torso_breadth_cm", r.torso_breadth_cm);
     row.Add("ms_per_frame", r.ms_per_frame).Add("cpu_ms_per_frame", r.cpu_ms_per_frame);
     report.rows.push_back(std::move(row));
   }
@@ -340,8 +345,8 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
 }
 
 std::set<std::string> TrackerFlags() {
-  return {"scenario",     "variants",    "iterations", "subsample", "body",
-          "limb-recheck", "turn-starts", "noise",      "seeds",     "json"};
+  return {"scenario",    "variants", "iterations", "subsample", "body",       "limb-recheck",
+          "turn-starts", "noise",    "seeds",      "json",      "torso-depth"};
 }
 
 namespace {
@@ -441,6 +446,11 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
     if (*noise != "on" && *noise != "off")
       return MakeError("usage", "--noise must be on or off, got '" + *noise + "'");
     o.depth_noise = *noise == "on";
+  }
+  if (auto depth = cl.Get("torso-depth")) {
+    if (*depth != "on" && *depth != "off")
+      return MakeError("usage", "--torso-depth must be on or off, got '" + *depth + "'");
+    o.tracker.measure_torso_depth = *depth == "on";
   }
   if (auto text = cl.Get("seeds")) {
     auto list = ParseCounts("seeds", *text);

@@ -34,8 +34,10 @@
 // between the track and the truth on the calibration frame, in the tracked segment's frame:
 // calibration_aligned_error.h; only for a track started from the calibration pose, each
 // calibration from that pose taking new offsets; it separates the tracking error from a
-// rig's joint definition, the goal's figure stays mpjpe_cm), ms_per_frame (median wall time
-// of the tracker alone, rendering excluded) and its median CPU time (all of the tracker's
+// rig's joint definition, the goal's figure stays mpjpe_cm), torso_depth_cm and
+// torso_breadth_cm (the tracked body's trunk at the end of the run: its depth as calibrated or
+// measured from side views, torso_depth.h; 0 for a track that never started), ms_per_frame (median
+// wall time of the tracker alone, rendering excluded) and its median CPU time (all of the tracker's
 // threads).
 // A second table breaks every row down by the frames that show a hard case according to the
 // ground truth (a case no frame shows gets no row):
@@ -101,6 +103,7 @@ struct TrackerEvalRow {
   int calibration_frame = -1, losses = 0, recoveries = 0;
   // See the header comment; nullopt where the track never started from the calibration pose.
   std::optional<double> aligned_mpjpe_cm;
+  double torso_depth_cm = 0, torso_breadth_cm = 0;
   double ms_per_frame = 0, cpu_ms_per_frame = 0;
 };
 

@@ -45,6 +45,7 @@ TEST(TrackerCli, Defaults) {
             capture::SkeletonTrackerOptions{}.limb_recheck_hypotheses);
   EXPECT_EQ(r->options.tracker.turn_start_deg, capture::SkeletonTrackerOptions{}.turn_start_deg);
   EXPECT_EQ(r->options.seeds, std::vector<int>{1});
+  EXPECT_TRUE(r->options.tracker.measure_torso_depth);
   EXPECT_FALSE(r->json_path);
 }
 
@@ -69,6 +70,8 @@ TEST(TrackerCli, Flags) {
   EXPECT_EQ(turns->options.tracker.turn_start_deg, 0);
   EXPECT_EQ(Parse({"--turn-starts", "40"})->options.tracker.turn_start_deg, 40);
   EXPECT_EQ(Parse({"--seeds", "3,1,2"})->options.seeds, (std::vector<int>{3, 1, 2}));
+  EXPECT_FALSE(Parse({"--torso-depth", "off"})->options.tracker.measure_torso_depth);
+  EXPECT_TRUE(Parse({"--torso-depth", "on"})->options.tracker.measure_torso_depth);
 }
 
 TEST(TrackerCli, BodyProceduralPlaysEveryScenarioOnTheProceduralBody) {
@@ -91,6 +94,7 @@ TEST(TrackerCli, BadInputIsRefused) {
   ExpectUsage({"--iterations", "8,x"}, "--iterations");
   ExpectUsage({"--subsample", "2.5"}, "--subsample");
   ExpectUsage({"--noise", "maybe"}, "--noise must be on or off");
+  ExpectUsage({"--torso-depth", "1"}, "--torso-depth must be on or off");
   ExpectUsage({"--body", ""}, "--body");
   ExpectUsage({"--limb-recheck", "-1"}, "--limb-recheck");
   ExpectUsage({"--limb-recheck", ""}, "--limb-recheck");
@@ -205,6 +209,11 @@ TEST(TrackerEval, ShortRunTracksEveryFrameAndWritesTheReport) {
     // tracker's model puts them, so that removes little and the same bound holds.
     ASSERT_TRUE(row.aligned_mpjpe_cm) << row.variant;
     EXPECT_LT(*row.aligned_mpjpe_cm, 5.0) << row.variant;
+    // The calibrated trunk (no side view in these frames): broader than deep, both within a
+    // human trunk's (the procedural body's is 29-34 cm broad and 20-22 cm deep).
+    EXPECT_GT(row.torso_breadth_cm, row.torso_depth_cm) << row.variant;
+    EXPECT_GT(row.torso_depth_cm, 10) << row.variant;
+    EXPECT_LT(row.torso_breadth_cm, 40) << row.variant;
     EXPECT_GT(row.ms_per_frame, 0);
   }
   // The near variant cuts the subject off at the image's lower edge.
@@ -222,7 +231,8 @@ TEST(TrackerEval, ShortRunTracksEveryFrameAndWritesTheReport) {
   for (const char* field :
        {"\"command\": \"tracker\"", "\"scenario\": \"turn-and-kick\"",
         "\"mpjpe_cm\":", "\"aligned_mpjpe_cm\":", "\"tracked_rate\":", "\"heading_deg\":",
-        "\"reversed_rate\":", "\"ms_per_frame\":", "\"case\": \"partly_outside\""})
+        "\"reversed_rate\":", "\"torso_depth_cm\":", "\"torso_breadth_cm\":", "\"ms_per_frame\":",
+        "\"case\": \"partly_outside\""})
     EXPECT_NE(text.str().find(field), std::string::npos) << field << " in " << text.str();
   // The joints table: every joint of every row, over the tracked frames.
   ASSERT_EQ(run->joints.size(), 2u * kJointCount);

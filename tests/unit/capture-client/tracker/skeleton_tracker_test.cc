@@ -111,6 +111,35 @@ TEST(SkeletonTracker, TracksTheCalibrationArmsDownAndTheStartOfTheTurn) {
   EXPECT_EQ(tracker.state(), TrackState::kTracking);
 }
 
+TEST(SkeletonTracker, MeasuresTheTrunksDepthOnceTheSubjectTurnsSideOn) {
+  // The procedural body's trunk (body_mesh.cc) is an elliptic capsule 0.100-0.110 m deep from
+  // its middle to its front (half depth) and 0.145-0.168 m broad from its middle to its side.
+  // The calibration pose faces the sensor, which shows the breadth; the depth is measured
+  // once the turn has shown the trunk within 30 degrees of side-on (torso_depth.h): there an
+  // ellipse's half width across the line of sight is between its half depth and
+  // sqrt(0.11^2 cos^2 30 + 0.168^2 sin^2 30) = 0.127 m, read on a grid of 2 px (0.6 cm in a
+  // half width at 2.5 m).
+  SkeletonTracker tracker(Scene().sensor_camera(), 0.001);
+  ASSERT_TRUE(TrackFrame(&tracker, 0).calibrated);
+  const BodyShape calibrated = tracker.calibration()->shape;
+  const double half_breadth = calibrated.torso_radius + calibrated.torso_half_spread;
+  for (int f = 1; f < 30; ++f) TrackFrame(&tracker, f);
+  // Facing the sensor: no side view yet, the calibration's depth.
+  EXPECT_EQ(tracker.calibration()->shape.torso_radius, calibrated.torso_radius);
+  for (int f = 30; f < 75; ++f) TrackFrame(&tracker, f);
+  const BodyShape measured = tracker.calibration()->shape;
+  EXPECT_GT(measured.torso_radius, 0.094);
+  EXPECT_LT(measured.torso_radius, 0.133);
+  EXPECT_NEAR(measured.torso_radius + measured.torso_half_spread, half_breadth, 1e-12);
+  EXPECT_EQ(measured.PartLengths(), calibrated.PartLengths());
+  // With the measurement off the calibration's depth stays.
+  SkeletonTrackerOptions off;
+  off.measure_torso_depth = false;
+  SkeletonTracker fixed(Scene().sensor_camera(), 0.001, off);
+  for (int f = 0; f < 75; ++f) TrackFrame(&fixed, f);
+  EXPECT_EQ(fixed.calibration()->shape.torso_radius, calibrated.torso_radius);
+}
+
 TEST(SkeletonTracker, AnArmHiddenBehindTheBodyHasLowerConfidence) {
   SkeletonTracker tracker(Scene().sensor_camera(), 0.001);
   // Frame 57: a quarter of the turn (1.2-4.0 s for 360 degrees, to the subject's left), the
