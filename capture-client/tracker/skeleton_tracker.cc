@@ -380,7 +380,9 @@ void SkeletonTracker::AdoptShape(const BodyShape& shape) {
 }
 
 void SkeletonTracker::CollectTorsoWidths(const BodyFitResult& fit, const PersonBlob& blob) {
-  if (!options_.measure_torso_depth || torso_depth_.done()) return;
+  if (!options_.measure_torso_depth || torso_depth_.done() ||
+      !(calibration_->from_calibration_pose || options_.measure_torso_depth_uncalibrated))
+    return;
   const std::optional<double> half_depth =
       torso_depth_.Add(MeasureTrunkWidths(*body_, fit.posed, blob, camera_, options_.torso_depth));
   if (half_depth)

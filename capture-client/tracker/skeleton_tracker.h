@@ -11,9 +11,9 @@
 //    neck depth measured on those frames (head_size.h), placed as when recovering from the
 //    silhouette (below); its bone lengths are less exact. Once it walks, its legs are scaled
 //    by the crotch's height seen between them (crotch_height.h) and its lengths fitted over
-//    frames with the legs apart (motion_calibration_frames, below). Either way the trunk's
-//    depth, which a front view does not show, is measured once the subject has turned side-on
-//    (torso_depth.h, measure_torso_depth below).
+//    frames with the legs apart (motion_calibration_frames, below). A calibrated body's trunk
+//    depth, which the calibration's front view does not show, is measured once the subject
+//    has turned side-on (torso_depth.h, measure_torso_depth below).
 //  - Tracking: detect the person near its previous centroid (of the points the last fit
 //    explained, so that an object once merged with the person does not pull it; across the
 //    detector's larger tracking_merge_step_m, so a hand behind the head stays), keep the points
@@ -193,11 +193,15 @@ struct SkeletonTrackerOptions {
   double leg_scale_noise = 0.05;
   double min_leg_scale = 0.8;
   double max_leg_scale = 1.2;
-  // The trunk's depth from side views (torso_depth.h), calibrated and uncalibrated starts
-  // alike: once torso_depth.side_frames tracked frames with good fits have seen the trunk
-  // within torso_depth.max_side_deg of side-on, the trunk's capsules take the measured depth,
-  // their breadth kept; then fixed. false: the depth of the calibration (or the proportions).
+  // The trunk's depth from side views (torso_depth.h): once torso_depth.side_frames tracked
+  // frames with good fits have seen the trunk within torso_depth.max_side_deg of side-on, the
+  // trunk's capsules take the measured depth, their breadth kept; then fixed. false: the
+  // calibration's depth. Only for a body calibrated from the calibration pose, unless
+  // measure_torso_depth_uncalibrated: a start without it has no measured breadth, and on
+  // CesiumMan's CMU walks the deeper trunk left more rows facing backwards for part of the
+  // walk (8 of 36 against 2) for no gain in MPJPE (docs/measurements.md).
   bool measure_torso_depth = true;
+  bool measure_torso_depth_uncalibrated = false;
   TorsoDepthOptions torso_depth;
   double full_support_ratio = 0.5;  // (0, 1]
   double min_confidence = 0.05;     // (0, 1]: tracked joints are never reported missing

@@ -47,7 +47,7 @@ constexpr const char* kUsage =
     "                       [--iterations N,...] [--subsample K,...]\n"
     "                       [--body FILE.glb|procedural] [--limb-recheck N]\n"
     "                       [--turn-starts DEG] [--noise on|off] [--seeds N,...]\n"
-    "                       [--torso-depth on|off] [--json FILE]\n"
+    "                       [--torso-depth off|calibrated|always] [--json FILE]\n"
     "      the depth skeleton tracker against the synthetic ground-truth skeleton (default\n"
     "      turn-and-kick,walk-handheld; bvh:FILE plays on --body, default CesiumMan; an\n"
     "      explicit --body plays every scenario on it, --body procedural on the procedural\n"
@@ -62,8 +62,9 @@ constexpr const char* kUsage =
     "      fit also started from the prediction turned by -DEG and +DEG about up, the\n"
     "      cheapest kept (default 25; 0: off); --seeds: one run per scene seed (the depth\n"
     "      noise; default 1), with their mean, least and largest MPJPE per setting;\n"
-    "      --torso-depth off: the trunk keeps the calibration's depth instead of the one\n"
-    "      measured from side views (default on)\n";
+    "      --torso-depth: the trunk's depth measured from side views for a body calibrated\n"
+    "      from the calibration pose (calibrated, the default), also for a start without it\n"
+    "      (always), or never (off: the calibration's depth)\n";
 
 int Fail(const Error& e) { return ReportFailure("reenact-eval", e); }
 

@@ -448,9 +448,11 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
     o.depth_noise = *noise == "on";
   }
   if (auto depth = cl.Get("torso-depth")) {
-    if (*depth != "on" && *depth != "off")
-      return MakeError("usage", "--torso-depth must be on or off, got '" + *depth + "'");
-    o.tracker.measure_torso_depth = *depth == "on";
+    if (*depth != "off" && *depth != "calibrated" && *depth != "always")
+      return MakeError("usage",
+                       "--torso-depth must be off, calibrated or always, got '" + *depth + "'");
+    o.tracker.measure_torso_depth = *depth != "off";
+    o.tracker.measure_torso_depth_uncalibrated = *depth == "always";
   }
   if (auto text = cl.Get("seeds")) {
     auto list = ParseCounts("seeds", *text);

@@ -46,6 +46,7 @@ TEST(TrackerCli, Defaults) {
   EXPECT_EQ(r->options.tracker.turn_start_deg, capture::SkeletonTrackerOptions{}.turn_start_deg);
   EXPECT_EQ(r->options.seeds, std::vector<int>{1});
   EXPECT_TRUE(r->options.tracker.measure_torso_depth);
+  EXPECT_FALSE(r->options.tracker.measure_torso_depth_uncalibrated);
   EXPECT_FALSE(r->json_path);
 }
 
@@ -71,7 +72,12 @@ TEST(TrackerCli, Flags) {
   EXPECT_EQ(Parse({"--turn-starts", "40"})->options.tracker.turn_start_deg, 40);
   EXPECT_EQ(Parse({"--seeds", "3,1,2"})->options.seeds, (std::vector<int>{3, 1, 2}));
   EXPECT_FALSE(Parse({"--torso-depth", "off"})->options.tracker.measure_torso_depth);
-  EXPECT_TRUE(Parse({"--torso-depth", "on"})->options.tracker.measure_torso_depth);
+  const auto always = Parse({"--torso-depth", "always"});
+  EXPECT_TRUE(always->options.tracker.measure_torso_depth);
+  EXPECT_TRUE(always->options.tracker.measure_torso_depth_uncalibrated);
+  const auto calibrated = Parse({"--torso-depth", "calibrated"});
+  EXPECT_TRUE(calibrated->options.tracker.measure_torso_depth);
+  EXPECT_FALSE(calibrated->options.tracker.measure_torso_depth_uncalibrated);
 }
 
 TEST(TrackerCli, BodyProceduralPlaysEveryScenarioOnTheProceduralBody) {
@@ -94,7 +100,7 @@ TEST(TrackerCli, BadInputIsRefused) {
   ExpectUsage({"--iterations", "8,x"}, "--iterations");
   ExpectUsage({"--subsample", "2.5"}, "--subsample");
   ExpectUsage({"--noise", "maybe"}, "--noise must be on or off");
-  ExpectUsage({"--torso-depth", "1"}, "--torso-depth must be on or off");
+  ExpectUsage({"--torso-depth", "on"}, "--torso-depth must be off, calibrated or always");
   ExpectUsage({"--body", ""}, "--body");
   ExpectUsage({"--limb-recheck", "-1"}, "--limb-recheck");
   ExpectUsage({"--limb-recheck", ""}, "--limb-recheck");

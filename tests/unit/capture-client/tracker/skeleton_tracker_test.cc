@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -138,6 +139,34 @@ TEST(SkeletonTracker, MeasuresTheTrunksDepthOnceTheSubjectTurnsSideOn) {
   SkeletonTracker fixed(Scene().sensor_camera(), 0.001, off);
   for (int f = 0; f < 75; ++f) TrackFrame(&fixed, f);
   EXPECT_EQ(fixed.calibration()->shape.torso_radius, calibrated.torso_radius);
+}
+
+TEST(SkeletonTracker, MeasuresAnUncalibratedTrunksDepthOnlyWhenAskedTo) {
+  // Joining turn-and-kick at frame 30, arms down, the tracker starts without the calibration
+  // pose after 15 frames, with the proportional body's depth, and the turn shows the trunk
+  // side-on at frames 54-64. By default such a body keeps its depth (skeleton_tracker.h);
+  // with measure_torso_depth_uncalibrated it takes the measured one, within the bounds of the
+  // calibrated test above.
+  SkeletonTrackerOptions measure;
+  measure.measure_torso_depth_uncalibrated = true;
+  for (const bool uncalibrated : {false, true}) {
+    SkeletonTracker tracker(Scene().sensor_camera(), 0.001,
+                            uncalibrated ? measure : SkeletonTrackerOptions{});
+    std::optional<double> start_radius;
+    for (int f = 30; f < 75; ++f)
+      if (TrackFrame(&tracker, f).calibrated)
+        start_radius = tracker.calibration()->shape.torso_radius;
+    ASSERT_TRUE(start_radius) << uncalibrated;
+    ASSERT_FALSE(tracker.calibration()->from_calibration_pose);
+    const double radius = tracker.calibration()->shape.torso_radius;
+    if (uncalibrated) {
+      EXPECT_NE(radius, *start_radius);  // measured (the proportions give 0.057 H = 0.100)
+      EXPECT_GT(radius, 0.094);
+      EXPECT_LT(radius, 0.133);
+    } else {
+      EXPECT_EQ(radius, *start_radius);
+    }
+  }
 }
 
 TEST(SkeletonTracker, AnArmHiddenBehindTheBodyHasLowerConfidence) {
