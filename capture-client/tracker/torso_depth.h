@@ -16,9 +16,9 @@
 //
 // Method, per tracked frame and trunk segment (pelvis, lower spine, chest; each in its own
 // frame from the fit) seen within max_side_deg of side-on by the fitted heading: the person's
-// points whose nearest capsule (body_fit.h's signed
-// distance) is one of the segment's, within max_distance_m of it, are cut into slices along
-// the segment's axis (slice_m, at least two grid rows at the points' depth); a slice's width is
+// points whose nearest capsule (body_fit.h's signed distance) is one of the segment's, within
+// max_distance_m of it, are cut into slices along the segment's axis (slice_m, at least two
+// grid rows at the points' depth); a slice's width is
 // the extent of its points across the line of sight plus one grid spacing (the points sample
 // the silhouette every grid step, so the extent falls short of it by about that), and w is half
 // the median width over the slices with at least min_slice_points points whose two extreme
