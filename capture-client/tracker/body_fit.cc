@@ -379,6 +379,24 @@ SegmentSupport SupportAt(const ArticulatedBody& body, const PosedBody3& posed,
   return out;
 }
 
+std::vector<int> NearestSegments(const ArticulatedBody& body, const PosedBody3& posed,
+                                 const std::vector<Eigen::Vector3d>& points, double max_m) {
+  const std::vector<PosedCapsule> caps = PoseCapsules(body, posed);
+  std::vector<int> out(points.size(), -1);
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d& p = points[i];
+    double best = std::numeric_limits<double>::infinity();
+    int owner = -1;
+    for (const PosedCapsule& c : caps) {
+      if (owner >= 0 && (p - c.centre).norm() - c.bound > best) continue;
+      const double e = (p - NearestOnAxis(c, p)).norm() - c.radius;
+      if (e < best) best = e, owner = c.segment;
+    }
+    if (std::abs(best) <= max_m) out[i] = owner;
+  }
+  return out;
+}
+
 BodyFitResult FitBody(const ArticulatedBody& body, const ArticulatedPose& start,
                       const BodyObservation& obs, const BodyFitOptions& options,
                       const JointLimits& limits) {

@@ -110,6 +110,11 @@ struct SegmentSupport {
 SegmentSupport SupportAt(const ArticulatedBody& body, const PosedBody3& posed,
                          const BodyObservation& observation, double inlier_m);
 
+// For each point, the segment of its nearest capsule at a pose (the smallest signed surface
+// distance e, the first of equals; as SupportAt), or -1 where |e| > max_m.
+std::vector<int> NearestSegments(const ArticulatedBody& body, const PosedBody3& posed,
+                                 const std::vector<Eigen::Vector3d>& points, double max_m);
+
 // The silhouette/free-space residual (see above) at an axis point q (sensor frame) and its
 // gradient with respect to q; false when q projects outside the image (or lies behind the
 // sensor) or lies inside the silhouette behind the observed surface (no term).

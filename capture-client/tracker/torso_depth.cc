@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "capture-client/tracker/body_fit.h"
 #include "common/error/check.h"
 #include "common/estimate/median.h"
 
@@ -14,20 +15,6 @@ namespace {
 
 constexpr BodySegment kTrunkSegments[] = {BodySegment::kPelvis, BodySegment::kLowerSpine,
                                           BodySegment::kChest};
-
-struct PosedCapsule {
-  int segment;
-  Eigen::Vector3d a, b;
-  double radius;
-};
-
-// Signed distance of p to a capsule's surface.
-double SurfaceDistance(const PosedCapsule& c, const Eigen::Vector3d& p) {
-  const Eigen::Vector3d ab = c.b - c.a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0 ? std::clamp((p - c.a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (p - c.a - t * ab).norm() - c.radius;
-}
 
 // Whether the silhouette really ends beyond the trunk's point p (sensor frame), looking
 // outwards along `outward` (unit, sensor frame) by step_m: the grid pixel there is not the
@@ -103,24 +90,12 @@ std::vector<TrunkWidth> MeasureTrunkWidths(const ArticulatedBody& body, const Po
   }
   if (views.empty()) return out;
 
-  std::vector<PosedCapsule> caps;
-  for (const BodyCapsule& c : body.capsules()) {
-    const Eigen::Isometry3d& t = posed.sensor_from_segment[static_cast<int>(c.segment)];
-    caps.push_back({static_cast<int>(c.segment), t * c.a, t * c.b, c.radius});
-  }
   // Each point's owner: the trunk segment of its nearest capsule, or -1.
-  std::vector<int> owner(blob.points.size(), -1);
-  for (size_t i = 0; i < blob.points.size(); ++i) {
-    double best = std::numeric_limits<double>::infinity();
-    int best_segment = -1;
-    for (const PosedCapsule& c : caps) {
-      const double e = SurfaceDistance(c, blob.points[i]);
-      if (e < best) best = e, best_segment = c.segment;
-    }
-    if (std::abs(best) > options.max_distance_m) continue;
-    for (const BodySegment s : kTrunkSegments)
-      if (best_segment == static_cast<int>(s)) owner[i] = best_segment;
-  }
+  std::vector<int> owner = NearestSegments(body, posed, blob.points, options.max_distance_m);
+  for (int& o : owner)
+    if (o >= 0 && std::find(std::begin(kTrunkSegments), std::end(kTrunkSegments),
+                            static_cast<BodySegment>(o)) == std::end(kTrunkSegments))
+      o = -1;
 
   for (const View& v : views) {
     const int si = static_cast<int>(v.segment);
