@@ -26,7 +26,7 @@ double AxisDistance(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
 }
 
 // The upper segment's directions: a cube's faces, edges and corners.
-constexpr int kDirectionCount = 26;
+constexpr int kCubeDirectionCount = 26;
 
 // One hypothesis: the limb's two joints (after clamping to the limits) and its cost.
 struct ScoredHypothesis {
@@ -166,7 +166,16 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
   if (lost) *lost = n_lost;
   std::vector<ScoredHypothesis> scored;
   if (n_lost <= min_lost) return scored;
-  scored.reserve(kDirectionCount * 9);
+  scored.reserve(kCubeDirectionCount * 9 + options.held_twists * 5);
+  auto score = [&](const Eigen::Matrix3d& upper_local, double hinge_deg, int direction) {
+    ArticulatedPose candidate = pose;
+    candidate.local[static_cast<int>(upper)] = upper_local;
+    candidate.hinge_angle[static_cast<int>(lower)] = hinge_deg * std::numbers::pi / 180;
+    ArticulatedBody::Clamp(&candidate, limits);
+    const double cost = cost_of(candidate);
+    scored.push_back({cost, direction, candidate.local[static_cast<int>(upper)],
+                      candidate.hinge_angle[static_cast<int>(lower)], taken});
+  };
   int direction = 0;
   for (int i = -1; i <= 1; ++i)
     for (int j = -1; j <= 1; ++j)
@@ -185,16 +194,21 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
             rotation.col(0) = x;
             rotation.col(1) = z.cross(x);
             rotation.col(2) = z;
-            ArticulatedPose candidate = pose;
-            candidate.local[static_cast<int>(upper)] = rotation;
-            candidate.hinge_angle[static_cast<int>(lower)] = angle * std::numbers::pi / 180;
-            ArticulatedBody::Clamp(&candidate, limits);
-            const double cost = cost_of(candidate);
-            scored.push_back({cost, direction, candidate.local[static_cast<int>(upper)],
-                              candidate.hinge_angle[static_cast<int>(lower)], taken});
+            score(rotation, angle, direction);
           }
         ++direction;
       }
+  // The upper segment held (its bone keeps its direction; one more direction of the ranking),
+  // the hinge's plane turned about it: a forearm or shin swung where the local fit lost it
+  // while its upper segment is still tracked.
+  const Eigen::Matrix3d& held = pose.local[static_cast<int>(upper)];
+  for (int twist = 0; twist < options.held_twists; ++twist) {
+    const Eigen::Matrix3d turned =
+        held * Eigen::AngleAxisd(twist * 2 * std::numbers::pi / options.held_twists,
+                                 Eigen::Vector3d::UnitZ())
+                   .toRotationMatrix();
+    for (double angle : {20.0, 45.0, 70.0, 95.0, 120.0}) score(turned, angle, direction);
+  }
   return scored;
 }
 
@@ -203,6 +217,7 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
 void LimbSearchOptions::Check() const {
   REENACT_CHECK(cap_m > 0 && min_gain >= 0 && min_gain < 1, "cap_m > 0, 0 <= min_gain < 1");
   REENACT_CHECK(min_lost_share >= 0 && min_lost_share <= 1, "min_lost_share in [0, 1]");
+  REENACT_CHECK(held_twists >= 0, "held_twists must be >= 0");
 }
 
 int SearchLimbs(const ArticulatedBody& body, const BodyObservation& obs, const BodyFitOptions& fit,
@@ -256,7 +271,7 @@ std::vector<ArticulatedPose> RankLimbHypotheses(const ArticulatedBody& body,
   std::stable_sort(
       scored.begin(), scored.end(),
       [](const ScoredHypothesis& a, const ScoredHypothesis& b) { return a.cost < b.cost; });
-  std::vector<bool> used(kDirectionCount, false);
+  std::vector<bool> used(kCubeDirectionCount + 1, false);
   for (const ScoredHypothesis& h : scored) {
     if (static_cast<int>(ranked.size()) >= count) break;
     if (used[h.direction]) continue;

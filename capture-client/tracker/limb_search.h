@@ -5,7 +5,12 @@
 // and shin with the foot) we try a fixed set of hypotheses with the rest of the body held:
 // the upper segment pointing along each of the 26 directions of a cube's faces, edges and
 // corners (in its parent's frame: chest or pelvis), straight, or bent by 60 or 110 degrees
-// in four planes around the bone (234 in all), each kept within the joint limits. A
+// in four planes around the bone (234), and the upper segment held where it is with the
+// lower one bent by 20, 45, 70, 95 or 120 degrees in held_twists planes around the bone (40
+// at the default 8), each kept within the joint limits. The held ones re-pose a forearm or
+// shin alone: where the upper segment is still tracked, a cube direction up to 22.5 degrees
+// off it moves the upper segment off its points, and costs more than the pose that lost the
+// forearm (a forearm swung back while the subject stands at the image's edge). A
 // hypothesis's cost is the fit's cost (body_fit.h) with every data point's residual the
 // smaller of its residual to the held body and to the limb, capped at cap_m (so points of
 // other objects cost the same for every hypothesis), plus the limb's silhouette/free-space
@@ -42,6 +47,7 @@ struct LimbSearchOptions {
   double cap_m = 0.25;     // residual cap, > 0
   double min_gain = 0.02;  // relative cost decrease required, [0, 1)
   double min_lost_share = 0.005;  // share of the points lost within a limb's reach, [0, 1]
+  int held_twists = 8;            // hinge-plane turns with the upper segment held, >= 0 (0: none)
 
   void Check() const;
 };
@@ -52,8 +58,8 @@ int SearchLimbs(const ArticulatedBody& body, const BodyObservation& observation,
                 const LimbSearchOptions& options, ArticulatedPose* pose);
 
 // The `count` (>= 0) cheapest hypotheses for `limb` by the search's cost, at most one per
-// direction of the upper segment, cheapest first; `pose` with only that limb re-posed. Empty
-// for an observation without points.
+// direction of the upper segment (the held ones share one), cheapest first; `pose` with only
+// that limb re-posed. Empty for an observation without points.
 std::vector<ArticulatedPose> RankLimbHypotheses(const ArticulatedBody& body,
                                                 const BodyObservation& observation,
                                                 const BodyFitOptions& fit,

@@ -345,8 +345,8 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
 }
 
 std::set<std::string> TrackerFlags() {
-  return {"scenario",    "variants", "iterations", "subsample", "body",       "limb-recheck",
-          "turn-starts", "noise",    "seeds",      "json",      "torso-depth"};
+  return {"scenario",    "variants", "iterations", "subsample", "body",        "limb-recheck",
+          "turn-starts", "noise",    "seeds",      "json",      "torso-depth", "held-twists"};
 }
 
 namespace {
@@ -441,6 +441,11 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
     auto value = ParseSetting("turn-starts", *text, 89);
     if (!value.ok()) return value.error();
     o.tracker.turn_start_deg = *value;
+  }
+  if (auto text = cl.Get("held-twists")) {
+    auto value = ParseSetting("held-twists", *text, 36);
+    if (!value.ok()) return value.error();
+    o.tracker.limb_search.held_twists = *value;
   }
   if (auto noise = cl.Get("noise")) {
     if (*noise != "on" && *noise != "off")

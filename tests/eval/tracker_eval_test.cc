@@ -47,6 +47,7 @@ TEST(TrackerCli, Defaults) {
   EXPECT_EQ(r->options.seeds, std::vector<int>{1});
   EXPECT_TRUE(r->options.tracker.measure_torso_depth);
   EXPECT_FALSE(r->options.tracker.measure_torso_depth_uncalibrated);
+  EXPECT_EQ(r->options.tracker.limb_search.held_twists, capture::LimbSearchOptions{}.held_twists);
   EXPECT_FALSE(r->json_path);
 }
 
@@ -70,6 +71,8 @@ TEST(TrackerCli, Flags) {
   ASSERT_TRUE(turns.ok()) << turns.error().message;
   EXPECT_EQ(turns->options.tracker.turn_start_deg, 0);
   EXPECT_EQ(Parse({"--turn-starts", "40"})->options.tracker.turn_start_deg, 40);
+  EXPECT_EQ(Parse({"--held-twists", "0"})->options.tracker.limb_search.held_twists, 0);
+  EXPECT_EQ(Parse({"--held-twists", "12"})->options.tracker.limb_search.held_twists, 12);
   EXPECT_EQ(Parse({"--seeds", "3,1,2"})->options.seeds, (std::vector<int>{3, 1, 2}));
   EXPECT_FALSE(Parse({"--torso-depth", "off"})->options.tracker.measure_torso_depth);
   const auto always = Parse({"--torso-depth", "always"});
@@ -109,6 +112,8 @@ TEST(TrackerCli, BadInputIsRefused) {
   ExpectUsage({"--turn-starts", "90"}, "--turn-starts takes one whole number from 0 (off) to 89");
   ExpectUsage({"--turn-starts", "-5"}, "--turn-starts");
   ExpectUsage({"--turn-starts", "12.5"}, "--turn-starts");
+  ExpectUsage({"--held-twists", "37"}, "--held-twists takes one whole number from 0 (off) to 36");
+  ExpectUsage({"--held-twists", "-1"}, "--held-twists");
   ExpectUsage({"--seeds", "0"}, "--seeds");
   ExpectUsage({"--seeds", "1,x"}, "--seeds");
   ExpectUsage({"--seeds", ""}, "--seeds");

@@ -312,6 +312,43 @@ TEST(LimbSearch, TakesTheLostPointsNotThoseOfAHeadLargerThanTheModels) {
   EXPECT_EQ(SearchLimbs(body, obs, options, JointLimits{}, LimbSearchOptions{}, &at_truth), 0);
 }
 
+TEST(LimbSearch, SwingsAForearmBackWithTheUpperArmHeld) {
+  // The upper arm hangs where the fit has it; the forearm, bent 85 degrees, points the other
+  // way round the bone (its hinge's plane turned by 166 degrees): the hand's points lie beyond
+  // outlier_m of the model's forearm, as where a forearm swings out of the image and back.
+  const ArticulatedBody body(BodyShape::FromHeight(1.75));
+  const int arm = static_cast<int>(BodySegment::kLeftUpperArm);
+  const int forearm = static_cast<int>(BodySegment::kLeftForearm);
+  const Eigen::Matrix3d hanging = ExpRotation(Eigen::Vector3d(0.15, 0.1, 0));
+  const auto twisted = [&](double rad) {
+    return Eigen::Matrix3d(hanging * Eigen::AngleAxisd(rad, Eigen::Vector3d::UnitZ()));
+  };
+  ArticulatedPose truth = SomePose();
+  truth.local[arm] = twisted(1.0);
+  truth.hinge_angle[forearm] = 1.48;
+  ArticulatedPose start = truth;
+  start.local[arm] = twisted(-1.9);
+  const BodyObservation obs = SurfaceObservation(body, truth);
+  BodyFitOptions options;
+  options.silhouette_weight = 0;  // points only
+  const auto hand_error = LeftHandError(body, truth);
+  ASSERT_GT(hand_error(FitBody(body, start, obs, options).pose), 0.3);
+
+  // The nearest held hypothesis is 14 degrees round the bone and 10 at the elbow from the
+  // truth; the fit from there converges on exact data.
+  ArticulatedPose searched = start;
+  EXPECT_EQ(SearchLimbs(body, obs, options, JointLimits{}, LimbSearchOptions{}, &searched), 1);
+  EXPECT_NEAR(searched.local[arm].col(2).dot(start.local[arm].col(2)), 1, 1e-9);
+  EXPECT_LT(hand_error(FitBody(body, searched, obs, options).pose), 0.01);
+
+  // Without the held hypotheses, every cube direction moves the upper arm off its points.
+  LimbSearchOptions cube_only;
+  cube_only.held_twists = 0;
+  ArticulatedPose cube = start;
+  SearchLimbs(body, obs, options, JointLimits{}, cube_only, &cube);
+  EXPECT_GT(hand_error(FitBody(body, cube, obs, options).pose), 0.05);
+}
+
 TEST(LimbSearch, BadOptionsAreABug) {
   LimbSearchOptions o;
   EXPECT_NO_THROW(o.Check());
@@ -321,6 +358,9 @@ TEST(LimbSearch, BadOptionsAreABug) {
   EXPECT_THROW(o.Check(), CheckError);
   o = {};
   o.min_gain = 1;
+  EXPECT_THROW(o.Check(), CheckError);
+  o = {};
+  o.held_twists = -1;
   EXPECT_THROW(o.Check(), CheckError);
 }
 
