@@ -27,6 +27,8 @@ double AxisDistance(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
 
 // The upper segment's directions: a cube's faces, edges and corners.
 constexpr int kCubeDirectionCount = 26;
+// The direction index every held hypothesis (upper segment kept where it is) shares.
+constexpr int kHeldDirection = kCubeDirectionCount;
 
 // One hypothesis: the limb's two joints (after clamping to the limits) and its cost.
 struct ScoredHypothesis {
@@ -198,16 +200,15 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
           }
         ++direction;
       }
-  // The upper segment held (its bone keeps its direction; one more direction of the ranking),
-  // the hinge's plane turned about it: a forearm or shin swung where the local fit lost it
-  // while its upper segment is still tracked.
+  // The upper segment held (its bone keeps its direction), the hinge's plane turned about it:
+  // a forearm or shin swung where the local fit lost it while its upper segment is tracked.
   const Eigen::Matrix3d& held = pose.local[static_cast<int>(upper)];
   for (int twist = 0; twist < options.held_twists; ++twist) {
     const Eigen::Matrix3d turned =
         held * Eigen::AngleAxisd(twist * 2 * std::numbers::pi / options.held_twists,
                                  Eigen::Vector3d::UnitZ())
                    .toRotationMatrix();
-    for (double angle : {20.0, 45.0, 70.0, 95.0, 120.0}) score(turned, angle, direction);
+    for (double angle : {20.0, 45.0, 70.0, 95.0, 120.0}) score(turned, angle, kHeldDirection);
   }
   return scored;
 }
@@ -271,7 +272,7 @@ std::vector<ArticulatedPose> RankLimbHypotheses(const ArticulatedBody& body,
   std::stable_sort(
       scored.begin(), scored.end(),
       [](const ScoredHypothesis& a, const ScoredHypothesis& b) { return a.cost < b.cost; });
-  std::vector<bool> used(kCubeDirectionCount + 1, false);
+  std::vector<bool> used(kHeldDirection + 1, false);
   for (const ScoredHypothesis& h : scored) {
     if (static_cast<int>(ranked.size()) >= count) break;
     if (used[h.direction]) continue;
