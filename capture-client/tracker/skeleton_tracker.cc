@@ -65,9 +65,9 @@ void SkeletonTrackerOptions::Check() const {
   REENACT_CHECK(turn_start_deg >= 0 && turn_start_deg < 90, "turn_start_deg must be in [0, 90)");
   REENACT_CHECK(heading_check_cooldown_frames >= 0, "heading_check_cooldown_frames must be >= 0");
   REENACT_CHECK(front_check_frames >= 0 && front_check_every >= 1 && front_check_gain >= 0 &&
-                    front_check_gain < 1,
+                    front_check_gain < 1 && front_check_confirm_frames >= 0,
                 "front_check_frames must be >= 0, front_check_every >= 1, front_check_gain in "
-                "[0, 1)");
+                "[0, 1), front_check_confirm_frames >= 0");
   REENACT_CHECK(
       motion_calibration_frames >= 0 && motion_frame_spacing >= 1 && motion_min_leg_spread_rad >= 0,
       "motion_calibration_frames >= 0, motion_frame_spacing >= 1, "
@@ -115,6 +115,7 @@ void SkeletonTracker::Reset() {
   travel_.Clear();
   heading_cooldown_ = 0;
   frames_since_silhouette_start_ = -1;
+  front_rival_.reset();
   recheck_limb_ = 0;
   motion_obs_.clear();
   motion_poses_.clear();
@@ -220,6 +221,7 @@ std::optional<BodyFitResult> SkeletonTracker::Recover(const PersonBlob& blob,
                                                       const BodyObservation& obs,
                                                       bool* from_extremities) {
   if (from_extremities) *from_extremities = false;
+  front_rival_.reset();
   // From the calibration pose, when shown.
   const CalibrationPoseTest test = TestCalibrationPose(blob, options_.calibration);
   BodyFitOptions fit = options_.fit;
@@ -284,10 +286,32 @@ std::optional<BodyFitResult> SkeletonTracker::BestHeading(
   return best;
 }
 
+BodyFitResult SkeletonTracker::FitFromPrediction(const ArticulatedPose& start,
+                                                 const PersonBlob& blob,
+                                                 const BodyObservation& obs) const {
+  // The turned starts, each on a thread of its own while this one fits the prediction.
+  std::vector<std::future<BodyFitResult>> turned;
+  if (options_.turn_start_deg > 0 && blob.floor_in_sensor) {
+    const Eigen::Vector3d up = blob.floor_in_sensor->normal;
+    const double angle = options_.turn_start_deg * std::numbers::pi / 180;
+    for (const double a : {-angle, angle})
+      turned.push_back(std::async(std::launch::async, [this, &start, &obs, up, a] {
+        return FitTurned(start, up, a, obs);
+      }));
+  }
+  BodyFitResult fit = Refine(FitBody(*body_, start, obs, options_.fit, options_.limits), obs);
+  for (std::future<BodyFitResult>& t : turned) fit = CheaperOf(std::move(fit), t.get());
+  if (options_.uncross_limbs) fit = Uncross(std::move(fit), obs);
+  if (options_.limb_recheck_hypotheses > 0)
+    fit = RecheckLimb(std::move(fit), obs, static_cast<Limb>(recheck_limb_));
+  return fit;
+}
+
 BodyFitResult SkeletonTracker::CheckFront(BodyFitResult fit, const PersonBlob& blob,
                                           const BodyObservation& obs) {
   if (frames_since_silhouette_start_ < 0) return fit;
   const int k = ++frames_since_silhouette_start_;
+  if (front_rival_) return FollowFrontRival(std::move(fit), blob, obs);
   if (k > options_.front_check_frames) {
     frames_since_silhouette_start_ = -1;
     return fit;
@@ -296,8 +320,32 @@ BodyFitResult SkeletonTracker::CheckFront(BodyFitResult fit, const PersonBlob& b
   const ArticulatedPose start =
       TurnedAround(*body_, fit.pose, blob.floor_in_sensor->normal, options_.limits);
   BodyFitResult around = Refine(FitBody(*body_, start, obs, options_.fit, options_.limits), obs);
-  if (Good(around) && around.cost <= (1 - options_.front_check_gain) * fit.cost) return around;
+  if (!Good(around) || around.cost > (1 - options_.front_check_gain) * fit.cost) return fit;
+  if (options_.front_check_confirm_frames == 0) return around;
+  front_rival_ = FrontRival{around.pose};
   return fit;
+}
+
+BodyFitResult SkeletonTracker::FollowFrontRival(BodyFitResult fit, const PersonBlob& blob,
+                                                const BodyObservation& obs) {
+  FrontRival& rival = *front_rival_;
+  ArticulatedPose start = rival.pose;
+  if (has_previous_)
+    start.root_translation += pose_.root_translation - previous_pose_.root_translation;
+  BodyFitResult r = FitFromPrediction(start, blob, obs);
+  if (!Good(r)) {
+    front_rival_.reset();
+    return fit;
+  }
+  rival.pose = r.pose;
+  rival.rival_cost += r.cost;
+  rival.track_cost += fit.cost;
+  const double keep = 1 - options_.front_check_gain;
+  const bool confirmed = rival.rival_cost <= keep * rival.track_cost;
+  const bool vetoed = rival.track_cost <= keep * rival.rival_cost;
+  if (!confirmed && !vetoed && ++rival.frames < options_.front_check_confirm_frames) return fit;
+  front_rival_.reset();
+  return vetoed ? fit : r;
 }
 
 BodyFitResult SkeletonTracker::CheckTravelHeading(
@@ -506,24 +554,9 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
     start.root_translation += pose_.root_translation - previous_pose_.root_translation;
   KeepPointsNearBody(*body_, body_->Pose(start), options_.keep_near_model_m, &obs);
   out.points = static_cast<int>(obs.points.size());
-  // The turned starts, each on a thread of its own while this one fits the prediction.
-  std::vector<std::future<BodyFitResult>> turned;
-  if (options_.turn_start_deg > 0 && blob.floor_in_sensor) {
-    const Eigen::Vector3d up = blob.floor_in_sensor->normal;
-    const double angle = options_.turn_start_deg * std::numbers::pi / 180;
-    for (const double a : {-angle, angle})
-      turned.push_back(std::async(std::launch::async, [this, &start, &obs, up, a] {
-        return FitTurned(start, up, a, obs);
-      }));
-  }
-  BodyFitResult fit = Refine(FitBody(*body_, start, obs, options_.fit, options_.limits), obs);
-  for (std::future<BodyFitResult>& t : turned) fit = CheaperOf(std::move(fit), t.get());
-  if (options_.uncross_limbs) fit = Uncross(std::move(fit), obs);
-  if (options_.limb_recheck_hypotheses > 0) {
-    fit = RecheckLimb(std::move(fit), obs, static_cast<Limb>(recheck_limb_));
-    recheck_limb_ = (recheck_limb_ + 1) % kLimbCount;
-  }
+  BodyFitResult fit = FitFromPrediction(start, blob, obs);
   fit = CheckFront(std::move(fit), blob, obs);
+  if (options_.limb_recheck_hypotheses > 0) recheck_limb_ = (recheck_limb_ + 1) % kLimbCount;
   if (Good(fit)) fit = CheckTravelHeading(std::move(fit), blob, obs, world_from_sensor);
   out.inlier_share = fit.inlier_share;
   out.outlier_share = fit.outlier_share;

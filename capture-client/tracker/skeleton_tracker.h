@@ -167,9 +167,17 @@ struct SkeletonTrackerOptions {
   // which bend one way only, tell them apart. Later the track's own continuity is the better
   // guide: checked throughout, a turn made in a fast spin was taken the wrong way round
   // (docs/measurements.md).
+  // A turned fit that wins a check is not taken at once when front_check_confirm_frames
+  // (>= 0; 0 = taken at once) is positive: it is followed as a rival track, each frame fitted
+  // from its own last pose as the track is, and the costs of both summed over the frames
+  // followed. The rival replaces the track as soon as its sum is at most (1 - front_check_gain)
+  // times the track's, is dropped as soon as the track's is at most that times the rival's,
+  // and replaces it when neither has happened after front_check_confirm_frames frames. One
+  // frame's cost tells front from back poorly where the body shows few points.
   int front_check_frames = 30;
   int front_check_every = 5;
   double front_check_gain = 0.1;
+  int front_check_confirm_frames = 5;
   // On-the-fly calibration of a body started without the calibration pose: the segment
   // lengths of shape_fit.h (its free lengths, priors and the standing height) fitted over
   // motion_calibration_frames (>= 0; 0 = off) tracked frames with good fits, at least
@@ -265,8 +273,16 @@ class SkeletonTracker {
                                            const std::vector<Eigen::Vector3d>& headings,
                                            const GeodesicExtremities* extremities = nullptr,
                                            bool* from_extremities = nullptr) const;
+  // A tracked frame's fit from the predicted pose `start`: its own fit and the turned starts'
+  // (the cheaper kept), limbs uncrossed, limb recheck_limb_ re-checked, as the options ask.
+  BodyFitResult FitFromPrediction(const ArticulatedPose& start, const PersonBlob& blob,
+                                  const BodyObservation& obs) const;
   // The front check of the options (front_check_*); returns the fit to keep.
   BodyFitResult CheckFront(BodyFitResult fit, const PersonBlob& blob, const BodyObservation& obs);
+  // One frame of the front check's rival (front_check_confirm_frames), fitted as the track is;
+  // returns the fit to keep.
+  BodyFitResult FollowFrontRival(BodyFitResult fit, const PersonBlob& blob,
+                                 const BodyObservation& obs);
   // The travel check of the options (front = direction of travel); returns the fit to keep.
   BodyFitResult CheckTravelHeading(BodyFitResult fit, const PersonBlob& blob,
                                    const BodyObservation& obs,
@@ -305,6 +321,14 @@ class SkeletonTracker {
   int heading_cooldown_ = 0;
   // Tracked frames since a start whose heading came from the silhouette (front_check_*).
   int frames_since_silhouette_start_ = -1;  // -1: none
+  // A turned fit that won a front check, followed until it is confirmed or dropped.
+  struct FrontRival {
+    ArticulatedPose pose;
+    double rival_cost = 0;  // summed over the frames followed after the check's
+    double track_cost = 0;  // the track's over the same frames
+    int frames = 0;         // followed so far
+  };
+  std::optional<FrontRival> front_rival_;
   int recheck_limb_ = 0;  // the limb to re-check next (Limb)
 };
 

@@ -345,8 +345,9 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
 }
 
 std::set<std::string> TrackerFlags() {
-  return {"scenario",    "variants", "iterations", "subsample", "body",        "limb-recheck",
-          "turn-starts", "noise",    "seeds",      "json",      "torso-depth", "held-twists"};
+  return {"scenario",     "variants",    "iterations",   "subsample", "body",
+          "limb-recheck", "turn-starts", "noise",        "seeds",     "json",
+          "torso-depth",  "held-twists", "front-confirm"};
 }
 
 namespace {
@@ -446,6 +447,11 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
     auto value = ParseSetting("held-twists", *text, 36);
     if (!value.ok()) return value.error();
     o.tracker.limb_search.held_twists = *value;
+  }
+  if (auto text = cl.Get("front-confirm")) {
+    auto value = ParseSetting("front-confirm", *text, 30);
+    if (!value.ok()) return value.error();
+    o.tracker.front_check_confirm_frames = *value;
   }
   if (auto noise = cl.Get("noise")) {
     if (*noise != "on" && *noise != "off")

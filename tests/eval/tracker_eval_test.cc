@@ -48,6 +48,8 @@ TEST(TrackerCli, Defaults) {
   EXPECT_TRUE(r->options.tracker.measure_torso_depth);
   EXPECT_FALSE(r->options.tracker.measure_torso_depth_uncalibrated);
   EXPECT_EQ(r->options.tracker.limb_search.held_twists, capture::LimbSearchOptions{}.held_twists);
+  EXPECT_EQ(r->options.tracker.front_check_confirm_frames,
+            capture::SkeletonTrackerOptions{}.front_check_confirm_frames);
   EXPECT_FALSE(r->json_path);
 }
 
@@ -73,6 +75,8 @@ TEST(TrackerCli, Flags) {
   EXPECT_EQ(Parse({"--turn-starts", "40"})->options.tracker.turn_start_deg, 40);
   EXPECT_EQ(Parse({"--held-twists", "0"})->options.tracker.limb_search.held_twists, 0);
   EXPECT_EQ(Parse({"--held-twists", "12"})->options.tracker.limb_search.held_twists, 12);
+  EXPECT_EQ(Parse({"--front-confirm", "0"})->options.tracker.front_check_confirm_frames, 0);
+  EXPECT_EQ(Parse({"--front-confirm", "3"})->options.tracker.front_check_confirm_frames, 3);
   EXPECT_EQ(Parse({"--seeds", "3,1,2"})->options.seeds, (std::vector<int>{3, 1, 2}));
   EXPECT_FALSE(Parse({"--torso-depth", "off"})->options.tracker.measure_torso_depth);
   const auto always = Parse({"--torso-depth", "always"});
@@ -114,6 +118,9 @@ TEST(TrackerCli, BadInputIsRefused) {
   ExpectUsage({"--turn-starts", "12.5"}, "--turn-starts");
   ExpectUsage({"--held-twists", "37"}, "--held-twists takes one whole number from 0 (off) to 36");
   ExpectUsage({"--held-twists", "-1"}, "--held-twists");
+  ExpectUsage({"--front-confirm", "31"},
+              "--front-confirm takes one whole number from 0 (off) to 30");
+  ExpectUsage({"--front-confirm", "x"}, "--front-confirm");
   ExpectUsage({"--seeds", "0"}, "--seeds");
   ExpectUsage({"--seeds", "1,x"}, "--seeds");
   ExpectUsage({"--seeds", ""}, "--seeds");
