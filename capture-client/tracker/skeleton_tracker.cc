@@ -286,6 +286,12 @@ std::optional<BodyFitResult> SkeletonTracker::BestHeading(
   return best;
 }
 
+ArticulatedPose SkeletonTracker::Predicted(ArticulatedPose pose) const {
+  if (has_previous_)
+    pose.root_translation += pose_.root_translation - previous_pose_.root_translation;
+  return pose;
+}
+
 BodyFitResult SkeletonTracker::FitFromPrediction(const ArticulatedPose& start,
                                                  const PersonBlob& blob,
                                                  const BodyObservation& obs) const {
@@ -329,10 +335,7 @@ BodyFitResult SkeletonTracker::CheckFront(BodyFitResult fit, const PersonBlob& b
 BodyFitResult SkeletonTracker::FollowFrontRival(BodyFitResult fit, const PersonBlob& blob,
                                                 const BodyObservation& obs) {
   FrontRival& rival = *front_rival_;
-  ArticulatedPose start = rival.pose;
-  if (has_previous_)
-    start.root_translation += pose_.root_translation - previous_pose_.root_translation;
-  BodyFitResult r = FitFromPrediction(start, blob, obs);
+  BodyFitResult r = FitFromPrediction(Predicted(rival.pose), blob, obs);
   if (!Good(r)) {
     front_rival_.reset();
     return fit;
@@ -549,9 +552,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
     return out;
   }
 
-  ArticulatedPose start = pose_;
-  if (has_previous_)
-    start.root_translation += pose_.root_translation - previous_pose_.root_translation;
+  const ArticulatedPose start = Predicted(pose_);
   KeepPointsNearBody(*body_, body_->Pose(start), options_.keep_near_model_m, &obs);
   out.points = static_cast<int>(obs.points.size());
   BodyFitResult fit = FitFromPrediction(start, blob, obs);

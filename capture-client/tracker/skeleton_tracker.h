@@ -273,6 +273,8 @@ class SkeletonTracker {
                                            const std::vector<Eigen::Vector3d>& headings,
                                            const GeodesicExtremities* extremities = nullptr,
                                            bool* from_extremities = nullptr) const;
+  // `pose` moved on by the track's last root displacement (the prediction for this frame).
+  ArticulatedPose Predicted(ArticulatedPose pose) const;
   // A tracked frame's fit from the predicted pose `start`: its own fit and the turned starts'
   // (the cheaper kept), limbs uncrossed, limb recheck_limb_ re-checked, as the options ask.
   BodyFitResult FitFromPrediction(const ArticulatedPose& start, const PersonBlob& blob,
