@@ -4,6 +4,7 @@
 
 #include "capture-client/tracker/extremity_pose.h"
 #include "capture-client/tracker/heading.h"
+#include "common/error/check.h"
 
 namespace reenact::capture {
 
@@ -22,6 +23,19 @@ ArticulatedPose SwappedLimbs(const ArticulatedBody& body, const ArticulatedPose&
   const Eigen::Vector3d right_end = LimbEnd(body, posed, pair.right);
   const ArticulatedPose reached = ReachLimb(body, pose, pair.left, right_end, limits);
   return ReachLimb(body, reached, pair.right, left_end, limits);
+}
+
+ArticulatedPose ReturnedLimb(const ArticulatedBody& body, const ArticulatedPose& pose,
+                             const ArticulatedPose& previous, LimbPair pair, Limb taker,
+                             const JointLimits& limits) {
+  REENACT_CHECK(taker == pair.left || taker == pair.right, "taker must be one of the pair");
+  const Limb other = taker == pair.left ? pair.right : pair.left;
+  const Eigen::Vector3d taken_end = LimbEnd(body, body.Pose(pose), taker);
+  ArticulatedPose returned = pose;
+  const int upper = static_cast<int>(LimbUpper(taker)), lower = static_cast<int>(LimbLower(taker));
+  returned.local[upper] = previous.local[upper];
+  returned.hinge_angle[lower] = previous.hinge_angle[lower];
+  return ReachLimb(body, returned, other, taken_end, limits);
 }
 
 ArticulatedPose TurnedAround(const ArticulatedBody& body, const ArticulatedPose& pose,

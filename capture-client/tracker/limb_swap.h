@@ -35,6 +35,19 @@ bool LimbsCrossed(const ArticulatedBody& body, const PosedBody3& posed, LimbPair
 ArticulatedPose SwappedLimbs(const ArticulatedBody& body, const ArticulatedPose& pose,
                              LimbPair pair, const JointLimits& limits = {});
 
+// The other way to undo a crossing: one limb took the other's data while the other lost it
+// (an arm swung forward faster than the fit followed, and the hidden arm behind the body
+// reached across for its points). `pose` with `taker` back at its joint angles in `previous`
+// (the upper segment's rotation in its parent's frame, the hinge angle) and the other limb
+// reaching where `taker` ends in `pose`. SwappedLimbs moves the taker to the other limb's end
+// instead, which is a guess wherever the fit left that limb without data: on the CMU walk
+// 131_01 seen at 15 frames a second, frame 84, the swap's fit cost 46 % more than the crossed
+// one, and the taker returned 24 % less (docs/measurements.md). Ends out of reach leave the
+// other limb straight towards the end. `taker` is one of the pair (else a bug).
+ArticulatedPose ReturnedLimb(const ArticulatedBody& body, const ArticulatedPose& pose,
+                             const ArticulatedPose& previous, LimbPair pair, Limb taker,
+                             const JointLimits& limits = {});
+
 // Front and back: `pose` turned half a turn about `up` (unit, the floor's normal; about the
 // waist joint), each limb then reaching where the opposite limb of `pose` ended, so that the
 // turned body lies on the same data with its left and right exchanged: the other answer to a

@@ -45,6 +45,7 @@ void SkeletonTrackerOptions::Check() const {
                 "limb_search_trigger in [0, 1]");
   limb_search.Check();
   REENACT_CHECK(uncross_gain >= 0 && uncross_gain < 1, "uncross_gain in [0, 1)");
+  REENACT_CHECK(limb_search_gain >= 0 && limb_search_gain < 1, "limb_search_gain in [0, 1)");
   REENACT_CHECK(limb_recheck_hypotheses >= 0 && limb_recheck_gain >= 0 && limb_recheck_gain < 1,
                 "limb_recheck_hypotheses must be >= 0 and limb_recheck_gain in [0, 1)");
   REENACT_CHECK(limb_recheck_max_other_move_m > 0 && limb_recheck_iterations >= 1,
@@ -155,15 +156,26 @@ BodyFitResult SkeletonTracker::Refine(BodyFitResult fit, const BodyObservation& 
   if (SearchLimbs(*body_, obs, options_.fit, options_.limits, options_.limb_search, &pose) == 0)
     return fit;
   BodyFitResult again = FitBody(*body_, pose, obs, options_.fit, options_.limits);
-  return again.cost < fit.cost ? again : fit;
+  if (CostWithLost(again) <= (1 - options_.limb_search_gain) * CostWithLost(fit)) return again;
+  return CheaperOf(std::move(fit), std::move(again));
 }
 
-BodyFitResult SkeletonTracker::Uncross(BodyFitResult fit, const BodyObservation& obs) const {
+BodyFitResult SkeletonTracker::Uncross(BodyFitResult fit, const BodyObservation& obs,
+                                       const ArticulatedPose& predicted) const {
+  const PosedBody3 predicted_posed = body_->Pose(predicted);
   for (const LimbPair pair : {kArms, kLegs}) {
     if (!LimbsCrossed(*body_, fit.posed, pair)) continue;
-    const ArticulatedPose start = SwappedLimbs(*body_, fit.pose, pair, options_.limits);
-    BodyFitResult swapped = Refine(FitBody(*body_, start, obs, options_.fit, options_.limits), obs);
-    if (swapped.cost < (1 - options_.uncross_gain) * fit.cost) fit = std::move(swapped);
+    std::vector<ArticulatedPose> starts = {SwappedLimbs(*body_, fit.pose, pair, options_.limits)};
+    if (options_.uncross_returns_limb && pair.left == kArms.left &&
+        !LimbsCrossed(*body_, predicted_posed, pair))
+      for (const Limb taker : {pair.left, pair.right})
+        starts.push_back(ReturnedLimb(*body_, fit.pose, predicted, pair, taker, options_.limits));
+    std::optional<BodyFitResult> best;
+    for (const ArticulatedPose& start : starts) {
+      BodyFitResult r = Refine(FitBody(*body_, start, obs, options_.fit, options_.limits), obs);
+      if (!best || r.cost < best->cost) best = std::move(r);
+    }
+    if (best->cost < (1 - options_.uncross_gain) * fit.cost) fit = std::move(*best);
   }
   return fit;
 }
@@ -174,14 +186,13 @@ BodyFitResult SkeletonTracker::FitTurned(const ArticulatedPose& start, const Eig
                 obs);
 }
 
-BodyFitResult SkeletonTracker::CheaperOf(BodyFitResult fit, BodyFitResult turned) const {
-  // Points beyond outlier_m cost nothing, so a fit can cost less by losing a limb's points; the
-  // turned fit must cost less with each point it leaves unexplained counted at outlier_m too.
-  const double lost_cost = HuberCost(options_.fit.outlier_m, options_.fit.huber_m);
-  const auto with_lost = [&](const BodyFitResult& r) {
-    return r.cost + r.outlier_share * r.points * lost_cost;
-  };
-  if (turned.cost < fit.cost && with_lost(turned) < with_lost(fit)) return turned;
+double SkeletonTracker::CostWithLost(const BodyFitResult& fit) const {
+  return fit.cost +
+         fit.outlier_share * fit.points * HuberCost(options_.fit.outlier_m, options_.fit.huber_m);
+}
+
+BodyFitResult SkeletonTracker::CheaperOf(BodyFitResult fit, BodyFitResult other) const {
+  if (other.cost < fit.cost && CostWithLost(other) < CostWithLost(fit)) return other;
   return fit;
 }
 
@@ -307,7 +318,7 @@ BodyFitResult SkeletonTracker::FitFromPrediction(const ArticulatedPose& start,
   }
   BodyFitResult fit = Refine(FitBody(*body_, start, obs, options_.fit, options_.limits), obs);
   for (std::future<BodyFitResult>& t : turned) fit = CheaperOf(std::move(fit), t.get());
-  if (options_.uncross_limbs) fit = Uncross(std::move(fit), obs);
+  if (options_.uncross_limbs) fit = Uncross(std::move(fit), obs, start);
   if (options_.limb_recheck_hypotheses > 0)
     fit = RecheckLimb(std::move(fit), obs, static_cast<Limb>(recheck_limb_));
   return fit;

@@ -85,8 +85,15 @@ struct SkeletonTrackerOptions {
   JointLimits limits;
   // Limb re-posing (limb_search.h) when more than limb_search_trigger of the points lie
   // beyond outlier_m of the fitted model ([0, 1]; 1 = never), then a second fit from there,
-  // kept when it costs less.
+  // kept when it costs less both on the fit's cost and with the points each fit leaves beyond
+  // outlier_m counted at outlier_m, or when it costs at most (1 - limb_search_gain) ([0, 1))
+  // times as much with them counted. Points beyond outlier_m cost nothing in the fit, so on
+  // its cost alone a fit that reached a rising hand's points lost to the one that left them
+  // (on the CMU walk 131_01 the right hand raised behind the head was then lost for the rest
+  // of the clip); the margin keeps a limb the data do not hold (hidden behind the body) from
+  // moving for a few stray points (docs/measurements.md).
   double limb_search_trigger = 0.005;
+  double limb_search_gain = 0.1;
   // While tracking, data points farther than this from the predicted body are not the
   // person's (metres, > 0; larger than a limb moves in one frame).
   double keep_near_model_m = 0.4;
@@ -95,8 +102,16 @@ struct SkeletonTrackerOptions {
   // the swapped limbs, re-posed by the limb search above, replaces the frame's when it costs
   // at most (1 - uncross_gain) ([0, 1)) times as much. A subject crossing its arms keeps them
   // crossed: the swapped fit then costs more.
+  // For the arms, where the prediction (the fit's start) had them apart, the fit is also
+  // started from each arm back at its predicted joint angles and the other reaching where it
+  // ended (limb_swap.h's ReturnedLimb: one arm took the other's data), and the cheapest of
+  // those and the swap is taken under the same margin (uncross_returns_limb; off: the swap
+  // alone, `reenact-eval tracker --uncross-return off`). Not for the legs: on CesiumMan's walk
+  // the returned leg left the hips 18 cm high where the swap alone leaves them 16 cm
+  // (docs/measurements.md).
   bool uncross_limbs = true;
   double uncross_gain = 0.05;
+  bool uncross_returns_limb = true;
   // Limb re-check, every tracked frame for one limb in turn (left arm, right arm, left leg,
   // right leg): its limb_recheck_hypotheses (>= 0; 0 = off) cheapest re-posings
   // (limb_search.h's RankLimbHypotheses) are each fitted from there with
@@ -257,13 +272,21 @@ class SkeletonTracker {
   Skeleton WithConfidence(const BodyFitResult& fit, const BodyObservation& obs, double inlier_m,
                           bool good) const;
   bool Good(const BodyFitResult& fit) const;
+  // The fit's cost with each point it leaves beyond outlier_m counted at outlier_m: points
+  // there cost nothing in the fit, so a fit could cost less by losing a limb's points.
+  double CostWithLost(const BodyFitResult& fit) const;
+  // `other` when it costs less than `fit` both on the fit's cost and with the lost points
+  // counted (CostWithLost); else `fit`.
+  BodyFitResult CheaperOf(BodyFitResult fit, BodyFitResult other) const;
+  // The limb search (limb_search.h) where the fit lost points, and the fit from there (see
+  // limb_search_trigger and limb_search_gain above).
   BodyFitResult Refine(BodyFitResult fit, const BodyObservation& obs) const;
-  BodyFitResult Uncross(BodyFitResult fit, const BodyObservation& obs) const;
-  // The fit (and Refine) from the start pose turned by angle_rad about up; and the rule that
-  // takes it over the prediction's fit (turn_start_deg).
+  BodyFitResult Uncross(BodyFitResult fit, const BodyObservation& obs,
+                        const ArticulatedPose& predicted) const;
+  // The fit (and Refine) from the start pose turned by angle_rad about up (turn_start_deg),
+  // taken over the prediction's by CheaperOf.
   BodyFitResult FitTurned(const ArticulatedPose& start, const Eigen::Vector3d& up, double angle_rad,
                           const BodyObservation& obs) const;
-  BodyFitResult CheaperOf(BodyFitResult fit, BodyFitResult turned) const;
   // The limb re-check of the options for limb `limb`; returns the fit to keep.
   BodyFitResult RecheckLimb(BodyFitResult fit, const BodyObservation& obs, Limb limb) const;
   // The best-costing fit of upright starts facing each of `headings` on the blob's floor,

@@ -345,9 +345,9 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
 }
 
 std::set<std::string> TrackerFlags() {
-  return {"scenario",     "variants",    "iterations",   "subsample", "body",
-          "limb-recheck", "turn-starts", "noise",        "seeds",     "json",
-          "torso-depth",  "held-twists", "front-confirm"};
+  return {"scenario",     "variants",    "iterations",    "subsample",     "body",
+          "limb-recheck", "turn-starts", "noise",         "seeds",         "json",
+          "torso-depth",  "held-twists", "front-confirm", "uncross-return"};
 }
 
 namespace {
@@ -452,6 +452,11 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
     auto value = ParseSetting("front-confirm", *text, 30);
     if (!value.ok()) return value.error();
     o.tracker.front_check_confirm_frames = *value;
+  }
+  if (auto text = cl.Get("uncross-return")) {
+    if (*text != "on" && *text != "off")
+      return MakeError("usage", "--uncross-return must be on or off, got '" + *text + "'");
+    o.tracker.uncross_returns_limb = *text == "on";
   }
   if (auto noise = cl.Get("noise")) {
     if (*noise != "on" && *noise != "off")

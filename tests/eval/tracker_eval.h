@@ -5,8 +5,8 @@
 //   reenact-eval tracker [--scenario S[,S...]] [--variants V[,V...]] [--iterations N[,N...]]
 //                        [--subsample K[,K...]] [--body FILE.glb|procedural]
 //                        [--limb-recheck N] [--turn-starts DEG] [--held-twists N]
-//                        [--front-confirm N] [--noise on|off] [--seeds N[,N...]]
-//                        [--json FILE]
+//                        [--front-confirm N] [--uncross-return on|off] [--noise on|off]
+//                        [--seeds N[,N...]] [--json FILE]
 //
 // --seeds: the scene's seeds, each a run of its own (default 1): the seed draws the depth
 // noise (and walk-handheld's hand shake), and a tracker fits every frame from the last one,
@@ -21,6 +21,9 @@
 // --front-confirm N: the frames a front check's turned fit is followed at most before it is
 // taken, 0 = taken on its own frame (SkeletonTrackerOptions::front_check_confirm_frames,
 // default 5).
+// --uncross-return on|off: where the fit newly crossed the arms, also a start from each arm
+// back at its predicted angles and the other reaching its end
+// (SkeletonTrackerOptions::uncross_returns_limb, default on; off: the swap alone).
 // Per scenario, variant and speed setting (iterations x subsample), every sensor frame is
 // rendered with Kinect-like depth noise (on by default) and tracked, frames in order through
 // one tracker that is given the sensor pose and the world's up (as the synthetic source gives

@@ -50,6 +50,8 @@ TEST(TrackerCli, Defaults) {
   EXPECT_EQ(r->options.tracker.limb_search.held_twists, capture::LimbSearchOptions{}.held_twists);
   EXPECT_EQ(r->options.tracker.front_check_confirm_frames,
             capture::SkeletonTrackerOptions{}.front_check_confirm_frames);
+  EXPECT_EQ(r->options.tracker.uncross_returns_limb,
+            capture::SkeletonTrackerOptions{}.uncross_returns_limb);
   EXPECT_FALSE(r->json_path);
 }
 
@@ -77,6 +79,8 @@ TEST(TrackerCli, Flags) {
   EXPECT_EQ(Parse({"--held-twists", "12"})->options.tracker.limb_search.held_twists, 12);
   EXPECT_EQ(Parse({"--front-confirm", "0"})->options.tracker.front_check_confirm_frames, 0);
   EXPECT_EQ(Parse({"--front-confirm", "3"})->options.tracker.front_check_confirm_frames, 3);
+  EXPECT_FALSE(Parse({"--uncross-return", "off"})->options.tracker.uncross_returns_limb);
+  EXPECT_TRUE(Parse({"--uncross-return", "on"})->options.tracker.uncross_returns_limb);
   EXPECT_EQ(Parse({"--seeds", "3,1,2"})->options.seeds, (std::vector<int>{3, 1, 2}));
   EXPECT_FALSE(Parse({"--torso-depth", "off"})->options.tracker.measure_torso_depth);
   const auto always = Parse({"--torso-depth", "always"});
@@ -121,6 +125,8 @@ TEST(TrackerCli, BadInputIsRefused) {
   ExpectUsage({"--front-confirm", "31"},
               "--front-confirm takes one whole number from 0 (off) to 30");
   ExpectUsage({"--front-confirm", "x"}, "--front-confirm");
+  ExpectUsage({"--uncross-return", "yes"}, "--uncross-return must be on or off");
+  ExpectUsage({"--uncross-return", ""}, "--uncross-return");
   ExpectUsage({"--seeds", "0"}, "--seeds");
   ExpectUsage({"--seeds", "1,x"}, "--seeds");
   ExpectUsage({"--seeds", ""}, "--seeds");
