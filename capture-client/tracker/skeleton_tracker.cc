@@ -162,12 +162,11 @@ BodyFitResult SkeletonTracker::Refine(BodyFitResult fit, const BodyObservation& 
 
 BodyFitResult SkeletonTracker::Uncross(BodyFitResult fit, const BodyObservation& obs,
                                        const ArticulatedPose& predicted) const {
-  const PosedBody3 predicted_posed = body_->Pose(predicted);
   for (const LimbPair pair : {kArms, kLegs}) {
     if (!LimbsCrossed(*body_, fit.posed, pair)) continue;
     std::vector<ArticulatedPose> starts = {SwappedLimbs(*body_, fit.pose, pair, options_.limits)};
     if (options_.uncross_returns_limb && pair.left == kArms.left &&
-        !LimbsCrossed(*body_, predicted_posed, pair))
+        !LimbsCrossed(*body_, body_->Pose(predicted), pair))
       for (const Limb taker : {pair.left, pair.right})
         starts.push_back(ReturnedLimb(*body_, fit.pose, predicted, pair, taker, options_.limits));
     std::optional<BodyFitResult> best;

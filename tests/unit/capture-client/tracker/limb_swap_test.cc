@@ -175,20 +175,16 @@ TEST(LimbSwap, ReturnedLimbTakesThePreviousAnglesAndTheOtherReachesTheData) {
   ASSERT_TRUE(LimbsCrossed(body, body.Pose(a.crossed), kArms));
   const ArticulatedPose returned = ReturnedLimb(body, a.crossed, a.previous, kArms, Limb::kLeftArm);
   // The left arm's angles are the previous pose's, exactly.
-  for (const S s : {S::kLeftUpperArm})
-    EXPECT_LT((returned.local[static_cast<int>(s)] - a.previous.local[static_cast<int>(s)]).norm(),
-              1e-12);
-  EXPECT_EQ(returned.hinge_angle[static_cast<int>(S::kLeftForearm)],
-            a.previous.hinge_angle[static_cast<int>(S::kLeftForearm)]);
+  const int upper = static_cast<int>(S::kLeftUpperArm), lower = static_cast<int>(S::kLeftForearm);
+  EXPECT_LT((returned.local[upper] - a.previous.local[upper]).norm(), 1e-12);
+  EXPECT_EQ(returned.hinge_angle[lower], a.previous.hinge_angle[lower]);
   // The right arm ends where the left one ended: its own end in the truth, within its reach,
   // so ReachLimb places it exactly.
-  const PosedBody3 posed = body.Pose(returned);
-  EXPECT_LT(
-      (LimbEnd(body, posed, Limb::kRightArm) - LimbEnd(body, body.Pose(a.crossed), Limb::kLeftArm))
-          .norm(),
-      1e-6);
-  EXPECT_FALSE(LimbsCrossed(body, posed, kArms));
   const PosedBody3 before = body.Pose(a.crossed);
+  const PosedBody3 posed = body.Pose(returned);
+  EXPECT_LT((LimbEnd(body, posed, Limb::kRightArm) - LimbEnd(body, before, Limb::kLeftArm)).norm(),
+            1e-6);
+  EXPECT_FALSE(LimbsCrossed(body, posed, kArms));
   for (const Joint j : {Joint::kHead, Joint::kNeck, Joint::kLeftShoulder, Joint::kRightShoulder,
                         Joint::kLeftFoot, Joint::kRightFoot})
     EXPECT_LT((posed.skeleton[j] - before.skeleton[j]).norm(), 1e-12);
