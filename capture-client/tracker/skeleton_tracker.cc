@@ -41,6 +41,7 @@ void SkeletonTrackerOptions::Check() const {
   calibration.Check();
   REENACT_CHECK(subsample >= 1, "subsample must be >= 1");
   REENACT_CHECK(keep_near_model_m > 0, "keep_near_model_m must be > 0");
+  static_scene.Check();
   REENACT_CHECK(limb_search_trigger >= 0 && limb_search_trigger <= 1,
                 "limb_search_trigger in [0, 1]");
   limb_search.Check();
@@ -101,7 +102,8 @@ SkeletonTracker::SkeletonTracker(const PinholeCamera& depth_camera, double depth
       camera_(depth_camera),
       options_(options),
       travel_(options.travel),
-      torso_depth_(options.torso_depth) {
+      torso_depth_(options.torso_depth),
+      static_scene_(depth_camera, options.static_scene) {
   options.Check();
 }
 
@@ -118,6 +120,7 @@ void SkeletonTracker::Reset() {
   frames_since_silhouette_start_ = -1;
   front_rival_.reset();
   recheck_limb_ = 0;
+  static_scene_.Clear();
   motion_obs_.clear();
   motion_poses_.clear();
   since_motion_frame_ = 0;
@@ -542,6 +545,8 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
 
   BodyObservation obs = MakeObservation(camera_, blob.grid_step_px, blob.mask, blob.depth_m,
                                         blob.points, blob.pixels, options_.subsample);
+  const bool use_static_scene = options_.static_scene.enabled && world_from_sensor.has_value();
+  if (use_static_scene) static_scene_.DropStatic(*world_from_sensor, blob.floor_in_sensor, &obs);
   out.points = static_cast<int>(obs.points.size());
   if (state_ == TrackState::kLost) {
     auto r = Recover(blob, obs, &out.from_extremities);
@@ -584,6 +589,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
   pose_ = fit.pose;
   has_previous_ = true;
   if (out.good_fit) {
+    if (use_static_scene) static_scene_.Learn(blob, *world_from_sensor, *body_, fit.posed);
     CollectMotionFrame(fit, obs);
     CollectCrotchHeight(fit, blob);
     CollectTorsoWidths(fit, blob);

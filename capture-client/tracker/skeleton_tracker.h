@@ -18,7 +18,9 @@
 //    explained, so that an object once merged with the person does not pull it; across the
 //    detector's larger tracking_merge_step_m, so a hand behind the head stays), keep the points
 //    within keep_near_model_m of the predicted body (the previous pose, its root moved by the last
-//    frame's root motion: an object that touches the person is left out), fit the
+//    frame's root motion: an object that touches the person is left out) and, given the sensor's
+//    pose, outside the static scene learned beside the person on earlier frames
+//    (static_scene_voxels.h: an object the person walks up to), fit the
 //    articulated body (body_fit.h) from the prediction, and from the prediction turned either
 //    way about the floor's up (turn_start_deg), keeping the cheapest fit.
 //    When many points are left unexplained, limbs are re-posed by a hypothesis search
@@ -69,6 +71,7 @@
 #include "capture-client/tracker/limb_search.h"
 #include "capture-client/tracker/limb_swap.h"
 #include "capture-client/tracker/person_detector.h"
+#include "capture-client/tracker/static_scene_voxels.h"
 #include "capture-client/tracker/torso_depth.h"
 #include "common/image/image.h"
 #include "common/skeleton/skeleton.h"
@@ -97,6 +100,9 @@ struct SkeletonTrackerOptions {
   // While tracking, data points farther than this from the predicted body are not the
   // person's (metres, > 0; larger than a limb moves in one frame).
   double keep_near_model_m = 0.4;
+  // The static scene learned while tracking (static_scene_voxels.h), its points dropped before the
+  // fit; used only on frames whose sensor pose is given (Track's world_from_sensor).
+  StaticSceneOptions static_scene;
   LimbSearchOptions limb_search;
   // Crossed limbs (limb_swap.h): when the fitted arms' (legs') ends lie crossed, the fit from
   // the swapped limbs, re-posed by the limb search above, replaces the frame's when it costs
@@ -355,6 +361,7 @@ class SkeletonTracker {
   };
   std::optional<FrontRival> front_rival_;
   int recheck_limb_ = 0;  // the limb to re-check next (Limb)
+  StaticSceneVoxels static_scene_;
 };
 
 }  // namespace reenact::capture

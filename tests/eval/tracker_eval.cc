@@ -345,9 +345,9 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
 }
 
 std::set<std::string> TrackerFlags() {
-  return {"scenario",     "variants",    "iterations",    "subsample",     "body",
-          "limb-recheck", "turn-starts", "noise",         "seeds",         "json",
-          "torso-depth",  "held-twists", "front-confirm", "uncross-return"};
+  return {"scenario",     "variants",    "iterations",    "subsample",      "body",
+          "limb-recheck", "turn-starts", "noise",         "seeds",          "json",
+          "torso-depth",  "held-twists", "front-confirm", "uncross-return", "static-scene"};
 }
 
 namespace {
@@ -382,6 +382,12 @@ Expected<std::vector<int>> ParseCounts(const std::string& flag, const std::strin
     out.push_back(value);
   }
   return out;
+}
+
+Expected<bool> ParseOnOff(const std::string& flag, const std::string& text) {
+  if (text != "on" && text != "off")
+    return MakeError("usage", "--" + flag + " must be on or off, got '" + text + "'");
+  return text == "on";
 }
 
 // One whole number from 0 (off) to max.
@@ -453,16 +459,14 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
     if (!value.ok()) return value.error();
     o.tracker.front_check_confirm_frames = *value;
   }
-  if (auto text = cl.Get("uncross-return")) {
-    if (*text != "on" && *text != "off")
-      return MakeError("usage", "--uncross-return must be on or off, got '" + *text + "'");
-    o.tracker.uncross_returns_limb = *text == "on";
-  }
-  if (auto noise = cl.Get("noise")) {
-    if (*noise != "on" && *noise != "off")
-      return MakeError("usage", "--noise must be on or off, got '" + *noise + "'");
-    o.depth_noise = *noise == "on";
-  }
+  for (const auto& [flag, value] : {std::pair{"uncross-return", &o.tracker.uncross_returns_limb},
+                                    std::pair{"static-scene", &o.tracker.static_scene.enabled},
+                                    std::pair{"noise", &o.depth_noise}})
+    if (auto text = cl.Get(flag)) {
+      auto on = ParseOnOff(flag, *text);
+      if (!on.ok()) return on.error();
+      *value = *on;
+    }
   if (auto depth = cl.Get("torso-depth")) {
     if (*depth != "off" && *depth != "calibrated" && *depth != "always")
       return MakeError("usage",

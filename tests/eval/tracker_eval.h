@@ -5,7 +5,8 @@
 //   reenact-eval tracker [--scenario S[,S...]] [--variants V[,V...]] [--iterations N[,N...]]
 //                        [--subsample K[,K...]] [--body FILE.glb|procedural]
 //                        [--limb-recheck N] [--turn-starts DEG] [--held-twists N]
-//                        [--front-confirm N] [--uncross-return on|off] [--noise on|off]
+//                        [--front-confirm N] [--uncross-return on|off]
+//                        [--static-scene on|off] [--noise on|off]
 //                        [--seeds N[,N...]] [--json FILE]
 //
 // --seeds: the scene's seeds, each a run of its own (default 1): the seed draws the depth
@@ -24,6 +25,9 @@
 // --uncross-return on|off: where the fit newly crossed the arms, also a start from each arm
 // back at its predicted angles and the other reaching its end
 // (SkeletonTrackerOptions::uncross_returns_limb, default on; off: the swap alone).
+// --static-scene on|off: the static scene learned beside the person while tracking, its
+// points dropped before the fit (SkeletonTrackerOptions::static_scene, static_scene_voxels.h;
+// default on; every scenario gives the tracker the sensor's pose).
 // Per scenario, variant and speed setting (iterations x subsample), every sensor frame is
 // rendered with Kinect-like depth noise (on by default) and tracked, frames in order through
 // one tracker that is given the sensor pose and the world's up (as the synthetic source gives

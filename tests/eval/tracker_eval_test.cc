@@ -52,6 +52,8 @@ TEST(TrackerCli, Defaults) {
             capture::SkeletonTrackerOptions{}.front_check_confirm_frames);
   EXPECT_EQ(r->options.tracker.uncross_returns_limb,
             capture::SkeletonTrackerOptions{}.uncross_returns_limb);
+  EXPECT_EQ(r->options.tracker.static_scene.enabled,
+            capture::SkeletonTrackerOptions{}.static_scene.enabled);
   EXPECT_FALSE(r->json_path);
 }
 
@@ -81,6 +83,8 @@ TEST(TrackerCli, Flags) {
   EXPECT_EQ(Parse({"--front-confirm", "3"})->options.tracker.front_check_confirm_frames, 3);
   EXPECT_FALSE(Parse({"--uncross-return", "off"})->options.tracker.uncross_returns_limb);
   EXPECT_TRUE(Parse({"--uncross-return", "on"})->options.tracker.uncross_returns_limb);
+  EXPECT_FALSE(Parse({"--static-scene", "off"})->options.tracker.static_scene.enabled);
+  EXPECT_TRUE(Parse({"--static-scene", "on"})->options.tracker.static_scene.enabled);
   EXPECT_EQ(Parse({"--seeds", "3,1,2"})->options.seeds, (std::vector<int>{3, 1, 2}));
   EXPECT_FALSE(Parse({"--torso-depth", "off"})->options.tracker.measure_torso_depth);
   const auto always = Parse({"--torso-depth", "always"});
@@ -127,6 +131,7 @@ TEST(TrackerCli, BadInputIsRefused) {
   ExpectUsage({"--front-confirm", "x"}, "--front-confirm");
   ExpectUsage({"--uncross-return", "yes"}, "--uncross-return must be on or off");
   ExpectUsage({"--uncross-return", ""}, "--uncross-return");
+  ExpectUsage({"--static-scene", "1"}, "--static-scene must be on or off");
   ExpectUsage({"--seeds", "0"}, "--seeds");
   ExpectUsage({"--seeds", "1,x"}, "--seeds");
   ExpectUsage({"--seeds", ""}, "--seeds");
