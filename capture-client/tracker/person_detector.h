@@ -102,6 +102,7 @@ class PersonDetector {
   void ResetFloor() { floor_.reset(); }
   const PersonDetectOptions& options() const { return options_; }
   const PinholeCamera& camera() const { return camera_; }
+  const PixelRays& rays() const { return rays_; }  // camera()'s pixel rays
 
  private:
   std::optional<Plane3> UpdateFloor(const ImageDepthMm& depth, const Eigen::Vector3d& up,

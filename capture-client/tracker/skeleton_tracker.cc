@@ -589,7 +589,8 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
   pose_ = fit.pose;
   has_previous_ = true;
   if (out.good_fit) {
-    if (use_static_scene) static_scene_.Learn(blob, *world_from_sensor, *body_, fit.posed);
+    if (use_static_scene)
+      static_scene_.Learn(blob, detector_.rays(), *world_from_sensor, *body_, fit.posed);
     CollectMotionFrame(fit, obs);
     CollectCrotchHeight(fit, blob);
     CollectTorsoWidths(fit, blob);

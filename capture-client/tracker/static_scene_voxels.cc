@@ -42,7 +42,7 @@ void StaticSceneOptions::Check() const {
 }
 
 StaticSceneVoxels::StaticSceneVoxels(const PinholeCamera& camera, const StaticSceneOptions& options)
-    : camera_(camera), rays_(camera), options_(options) {
+    : camera_(camera), options_(options) {
   options_.Check();
 }
 
@@ -57,8 +57,11 @@ std::pair<uint64_t, int> StaticSceneVoxels::Slot(const Eigen::Array3i& voxel) {
   return {BlockKey(block), local.x() | (local.y() << kBlockBits) | (local.z() << (2 * kBlockBits))};
 }
 
-void StaticSceneVoxels::Learn(const PersonBlob& blob, const Eigen::Isometry3d& world_from_sensor,
+void StaticSceneVoxels::Learn(const PersonBlob& blob, const PixelRays& rays,
+                              const Eigen::Isometry3d& world_from_sensor,
                               const ArticulatedBody& body, const PosedBody3& posed) {
+  REENACT_CHECK(rays.width() == camera_.width && rays.height() == camera_.height,
+                "Learn needs the rays of the map's camera");
   const int g = blob.grid_step_px, gw = blob.depth_m.width, gh = blob.depth_m.height;
   if (gw == 0 || gh == 0 || !world_from_sensor.matrix().allFinite()) return;
   ++frame_;
@@ -120,7 +123,7 @@ void StaticSceneVoxels::Learn(const PersonBlob& blob, const Eigen::Isometry3d& w
     for (int x = 0; x < gw; x += options_.learn_step) {
       const float z = blob.depth_m.at(x, y);
       if (z <= 0 || blob.mask.at(x, y) != 0) continue;
-      const Eigen::Vector3d p = rays_.Point(x * g, y * g, z);
+      const Eigen::Vector3d p = rays.Point(x * g, y * g, z);
       if (blob.floor_in_sensor &&
           blob.floor_in_sensor->SignedDistance(p) < options_.floor_clearance_m)
         continue;

@@ -71,10 +71,12 @@ class StaticSceneVoxels {
   // options.
   StaticSceneVoxels(const PinholeCamera& camera, const StaticSceneOptions& options);
 
-  // Learns from one well-fitted frame: blob from the person detector, posed the fit's body
-  // (sensor frame). A frame without a grid or with a non-finite pose teaches nothing.
-  void Learn(const PersonBlob& blob, const Eigen::Isometry3d& world_from_sensor,
-             const ArticulatedBody& body, const PosedBody3& posed);
+  // Learns from one well-fitted frame: blob from the person detector, rays the camera's
+  // (PersonDetector::rays; another camera's size: CHECK), posed the fit's body (sensor
+  // frame). A frame without a grid or with a non-finite pose teaches nothing.
+  void Learn(const PersonBlob& blob, const PixelRays& rays,
+             const Eigen::Isometry3d& world_from_sensor, const ArticulatedBody& body,
+             const PosedBody3& posed);
 
   // Whether a world point lies in a static voxel.
   bool IsStatic(const Eigen::Vector3d& point_in_world) const;
@@ -101,7 +103,6 @@ class StaticSceneVoxels {
   static std::pair<uint64_t, int> Slot(const Eigen::Array3i& voxel);
 
   PinholeCamera camera_;
-  PixelRays rays_;
   StaticSceneOptions options_;
   std::unordered_map<uint64_t, Block> blocks_;  // by block index (BlockKey)
   uint32_t frame_ = 0;

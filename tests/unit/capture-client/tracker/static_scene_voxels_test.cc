@@ -26,6 +26,7 @@ constexpr double kBoxX0 = 0.65, kBoxX1 = 0.8, kBoxZ = kBodyZ;
 
 struct Scene {
   PinholeCamera camera = PinholeCamera::KinectLike();
+  PixelRays rays{camera};
   ArticulatedBody body{BodyShape::FromHeight(1.75)};
   PosedBody3 posed = body.Pose(FacingSensor(body, kBodyZ));
   // A sensor placed and turned in the world, so that the map's frame is not the sensor's.
@@ -92,9 +93,9 @@ TEST(StaticSceneVoxels, CountsEachFrameOnceUntilMinFrames) {
   StaticSceneVoxels map(s.camera, options);
   const PersonBlob blob = s.Blob();
   for (int f = 1; f < options.min_frames; ++f)
-    map.Learn(blob, s.world_from_sensor, s.body, s.posed);
+    map.Learn(blob, s.rays, s.world_from_sensor, s.body, s.posed);
   EXPECT_FALSE(map.IsStatic(s.BoxCentre()));
-  map.Learn(blob, s.world_from_sensor, s.body, s.posed);
+  map.Learn(blob, s.rays, s.world_from_sensor, s.body, s.posed);
   EXPECT_TRUE(map.IsStatic(s.BoxCentre()));
   // In the world frame: the same point in the sensor frame is elsewhere in the world.
   EXPECT_FALSE(map.IsStatic(s.world_from_sensor.inverse() * s.BoxCentre()));
@@ -113,7 +114,7 @@ TEST(StaticSceneVoxels, NeverLearnsReadingsNearTheFittedBody) {
   const Eigen::Vector3d far(chest.x(), chest.y() + 0.3, chest.z() - 0.9);
   s.PutPatch(near, 3, &blob);
   s.PutPatch(far, 3, &blob);
-  for (int f = 0; f < 20; ++f) map.Learn(blob, s.world_from_sensor, s.body, s.posed);
+  for (int f = 0; f < 20; ++f) map.Learn(blob, s.rays, s.world_from_sensor, s.body, s.posed);
   EXPECT_EQ(s.StaticInPatch(map, near, 3), 0);
   EXPECT_EQ(s.StaticInPatch(map, far, 3), 49);
 }
@@ -131,7 +132,7 @@ TEST(StaticSceneVoxels, NeverLearnsTheFloor) {
   const Eigen::Vector3d low(-0.8, floor_y - 0.03, 3.5), high(-0.8, floor_y - 0.3, 3.5);
   s.PutPatch(low, 2, &blob);
   s.PutPatch(high, 2, &blob);
-  for (int f = 0; f < 12; ++f) map.Learn(blob, s.world_from_sensor, s.body, s.posed);
+  for (int f = 0; f < 12; ++f) map.Learn(blob, s.rays, s.world_from_sensor, s.body, s.posed);
   EXPECT_EQ(s.StaticInPatch(map, low, 2), 0);
   EXPECT_EQ(s.StaticInPatch(map, high, 2), 25);
 }
@@ -153,7 +154,7 @@ TEST(StaticSceneVoxels, DropsAnObjectsLowestPointsByTheVoxelAboveThem) {
       if (r.x() >= -1.0 && r.x() <= -0.7 && r.y() >= floor_y - 0.4 && r.y() <= floor_y)
         blob.depth_m.at(x, y) = static_cast<float>(z);
     }
-  for (int f = 0; f < 12; ++f) map.Learn(blob, s.world_from_sensor, s.body, s.posed);
+  for (int f = 0; f < 12; ++f) map.Learn(blob, s.rays, s.world_from_sensor, s.body, s.posed);
   const Eigen::Vector3d down(0, 1, 0);
   const double lift = options.floor_clearance_m - 0.03 + 0.5 * options.voxel_m;
   const Eigen::Vector3d above = s.ReadingAt(Eigen::Vector3d(-0.85, floor_y - 0.03 - lift, z));
@@ -171,17 +172,17 @@ TEST(StaticSceneVoxels, DropsAnObjectsLowestPointsByTheVoxelAboveThem) {
 TEST(StaticSceneVoxels, ForgetsAnObjectSeenThroughNearThePerson) {
   const Scene s;
   StaticSceneVoxels map(s.camera, StaticSceneOptions{});
-  for (int f = 0; f < 12; ++f) map.Learn(s.Blob(), s.world_from_sensor, s.body, s.posed);
+  for (int f = 0; f < 12; ++f) map.Learn(s.Blob(), s.rays, s.world_from_sensor, s.body, s.posed);
   ASSERT_TRUE(map.IsStatic(s.BoxCentre()));
   // The box taken away: the wall is seen where it stood, 1.5 m behind.
-  map.Learn(s.Blob(false), s.world_from_sensor, s.body, s.posed);
+  map.Learn(s.Blob(false), s.rays, s.world_from_sensor, s.body, s.posed);
   EXPECT_FALSE(map.IsStatic(s.BoxCentre()));
 }
 
 TEST(StaticSceneVoxels, DropsTheScenesPointsAndKeepsThePersons) {
   const Scene s;
   StaticSceneVoxels map(s.camera, StaticSceneOptions{});
-  for (int f = 0; f < 12; ++f) map.Learn(s.Blob(), s.world_from_sensor, s.body, s.posed);
+  for (int f = 0; f < 12; ++f) map.Learn(s.Blob(), s.rays, s.world_from_sensor, s.body, s.posed);
   // Five of the box's readings, and five points on the chest's surface (where the wall's
   // readings lay behind the body: never the scene's).
   BodyObservation obs;
@@ -201,7 +202,7 @@ TEST(StaticSceneVoxels, EmptyOrNonFiniteInputLearnsNothing) {
   const Scene s;
   StaticSceneVoxels map(s.camera, StaticSceneOptions{});
   PersonBlob empty;  // no grid (a frame without readings)
-  map.Learn(empty, s.world_from_sensor, s.body, s.posed);
+  map.Learn(empty, s.rays, s.world_from_sensor, s.body, s.posed);
   BodyObservation obs;
   EXPECT_EQ(map.DropStatic(s.world_from_sensor, std::nullopt, &obs), 0);
   obs.points.push_back(s.world_from_sensor.inverse() * s.BoxCentre());
@@ -209,10 +210,10 @@ TEST(StaticSceneVoxels, EmptyOrNonFiniteInputLearnsNothing) {
   // A pose that is not finite teaches nothing and drops nothing.
   Eigen::Isometry3d nan_pose = s.world_from_sensor;
   nan_pose.translation().x() = std::numeric_limits<double>::quiet_NaN();
-  for (int f = 0; f < 12; ++f) map.Learn(s.Blob(), nan_pose, s.body, s.posed);
+  for (int f = 0; f < 12; ++f) map.Learn(s.Blob(), s.rays, nan_pose, s.body, s.posed);
   EXPECT_FALSE(map.IsStatic(s.BoxCentre()));
   // Cleared, a learned scene is gone.
-  for (int f = 0; f < 12; ++f) map.Learn(s.Blob(), s.world_from_sensor, s.body, s.posed);
+  for (int f = 0; f < 12; ++f) map.Learn(s.Blob(), s.rays, s.world_from_sensor, s.body, s.posed);
   obs.points.assign(1, s.world_from_sensor.inverse() * s.BoxCentre());
   EXPECT_EQ(map.DropStatic(nan_pose, std::nullopt, &obs), 0);
   ASSERT_TRUE(map.IsStatic(s.BoxCentre()));
@@ -238,6 +239,11 @@ TEST(StaticSceneVoxels, BadOptionsAreABug) {
   EXPECT_THROW(StaticSceneVoxels(PinholeCamera::KinectLike(), bad([](auto& o) { o.voxel_m = -1; })),
                CheckError);
   EXPECT_NO_THROW(StaticSceneOptions{}.Check());
+  // Rays of another camera than the map's.
+  const Scene s;
+  StaticSceneVoxels map(s.camera, StaticSceneOptions{});
+  const PixelRays other(PinholeCamera::KinectLike().Cropped(0, 0, 320, 240));
+  EXPECT_THROW(map.Learn(s.Blob(), other, s.world_from_sensor, s.body, s.posed), CheckError);
 }
 
 }  // namespace
