@@ -79,9 +79,10 @@ Status CheckFrameSizes(const SensorFrame& f, const SensorInfo& info, int index) 
 
 // The frame's skeleton in the sensor frame, from the lookup or the source.
 Expected<std::optional<Skeleton>> SkeletonInSensor(const SensorFrame& f, const SensorInfo& info,
-                                                   int index, const RecordOptions& options) {
+                                                   int index, const RecordOptions& options,
+                                                   const FramePoseHint& pose) {
   if (options.frame_skeletons) {
-    auto s = options.frame_skeletons(index, f);
+    auto s = options.frame_skeletons(index, f, pose);
     if (!s.ok()) return s.error();
     const bool any_joint = *s && std::any_of((*s)->confidence.begin(), (*s)->confidence.end(),
                                              [](double c) { return c > 0; });
@@ -189,7 +190,9 @@ Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::p
     }
 
     const auto skeleton_start = Clock::now();
-    auto skeleton = SkeletonInSensor(f, info, index, options);
+    const FramePoseHint pose = slam ? FramePoseHint{slam->PredictedWorldFromSensor(), world_up}
+                                    : FramePoseHint{f.world_from_sensor, info.world_up};
+    auto skeleton = SkeletonInSensor(f, info, index, options, pose);
     if (!skeleton.ok()) return skeleton.error();
     times.tracker_ms.push_back(options.frame_skeletons ? MsSince(skeleton_start) : 0.0);
 

@@ -50,12 +50,23 @@ enum class PoseSource {
 // the sensor frame (OpenCV camera axes, metres), or nullopt when there is none.
 using SkeletonLookup = std::function<std::optional<Skeleton>(int64_t index, double timestamp_s)>;
 
-// The skeleton of a source frame computed from the frame itself (depth, and its sensor pose
-// when the source knows it), in the sensor frame, or nullopt when there is none. Called once
-// per source frame, in order (a tracker keeps state between frames); `frame` is valid only
-// during the call. An Error stops the recording.
-using FrameSkeletonSource =
-    std::function<Expected<std::optional<Skeleton>>(int64_t index, const SensorFrame& frame)>;
+// The sensor pose and the world's up (unit) that a frame skeleton source is given with a
+// frame, when known: the source's own when the recording takes the source's poses; with SLAM,
+// SLAM's prediction for the frame (RgbdSlam::PredictedWorldFromSensor: SLAM tracks a frame
+// only after its skeleton, whose person mask it needs; none before SLAM has founded its map
+// and while it is lost) and the up known so far (the source's, else the floor's under the
+// first posed frame).
+struct FramePoseHint {
+  std::optional<Eigen::Isometry3d> world_from_sensor;
+  std::optional<Eigen::Vector3d> world_up;
+};
+
+// The skeleton of a source frame computed from the frame itself (its depth, and the pose hint
+// in SLAM's or the source's world), in the sensor frame, or nullopt when there is none.
+// Called once per source frame, in order (a tracker keeps state between frames); `frame` is
+// valid only during the call. An Error stops the recording.
+using FrameSkeletonSource = std::function<Expected<std::optional<Skeleton>>(
+    int64_t index, const SensorFrame& frame, const FramePoseHint& pose)>;
 
 struct RecordOptions {
   int max_frames = -1;         // source frames to read, -1 = until the source ends; else >= 1

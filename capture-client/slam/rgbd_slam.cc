@@ -61,6 +61,12 @@ RgbdSlam::~RgbdSlam() = default;
 RgbdSlam::RgbdSlam(RgbdSlam&&) noexcept = default;
 RgbdSlam& RgbdSlam::operator=(RgbdSlam&&) noexcept = default;
 
+std::optional<Eigen::Isometry3d> RgbdSlam::PredictedWorldFromSensor() const {
+  const State& s = *state_;
+  if (!s.last_sensor_from_world) return std::nullopt;
+  return Eigen::Isometry3d((s.velocity * *s.last_sensor_from_world).inverse());
+}
+
 bool RgbdSlam::initialised() const { return state_->initialised; }
 bool RgbdSlam::lost() const { return state_->lost; }
 int RgbdSlam::frames_seen() const { return state_->frames_seen; }

@@ -65,6 +65,11 @@ class RgbdSlam {
                                   const ImageDepthMm& depth,
                                   const ImageGray8* person_mask = nullptr);
 
+  // The next frame's world_from_sensor as step 2 predicts it (the last pose moved on by the
+  // last frame-to-frame motion), for a consumer that needs a pose before the frame is tracked
+  // (the recorder's skeleton tracker); nullopt before the map is founded and while lost.
+  std::optional<Eigen::Isometry3d> PredictedWorldFromSensor() const;
+
   bool initialised() const;
   bool lost() const;
   int frames_seen() const;

@@ -40,11 +40,14 @@ TrackerSkeletonSource::TrackerSkeletonSource(const SensorInfo& info,
       tracker_(std::make_unique<SkeletonTracker>(info.depth_camera, info.depth_scale_m, options)) {}
 
 FrameSkeletonSource TrackerSkeletonSource::Function() {
-  return [this](int64_t index, const SensorFrame& frame) { return Track(index, frame); };
+  return [this](int64_t index, const SensorFrame& frame, const FramePoseHint& pose) {
+    return Track(index, frame, pose);
+  };
 }
 
 Expected<std::optional<Skeleton>> TrackerSkeletonSource::Track(int64_t index,
-                                                               const SensorFrame& frame) {
+                                                               const SensorFrame& frame,
+                                                               const FramePoseHint& pose) {
   const PinholeCamera& cam = info_.depth_camera;
   if (frame.depth.width != cam.width || frame.depth.height != cam.height ||
       frame.depth.channels != 1)
@@ -55,8 +58,8 @@ Expected<std::optional<Skeleton>> TrackerSkeletonSource::Track(int64_t index,
                                     std::to_string(cam.height));
   const TrackState before = tracker_->state();
   const TrackFrameResult r =
-      tracker_->Track(frame.depth, frame.world_from_sensor,
-                      frame.world_from_sensor ? info_.world_up : std::optional<Eigen::Vector3d>());
+      tracker_->Track(frame.depth, pose.world_from_sensor,
+                      pose.world_from_sensor ? pose.world_up : std::optional<Eigen::Vector3d>());
   ++stats_.frames;
   ++stats_.detect[static_cast<int>(r.detect)];
   if (r.calibrated && stats_.calibration_frame < 0) {

@@ -1,8 +1,9 @@
 #pragma once
 // The depth tracker as the recorder's skeleton source (record/clip_recorder.h,
 // RecordOptions::frame_skeletons): one SkeletonTracker per recording, fed every source
-// frame's depth in order, with the frame's sensor pose and the source's world up when the
-// source knows them. Counts what happened, for the recording's summary.
+// frame's depth in order, with the recorder's pose hint (the source's pose, or SLAM's
+// prediction for a sensor without poses) and world up when known: the tracker's static scene
+// and floor need them for a moving sensor. Counts what happened, for the recording's summary.
 
 #include <array>
 #include <memory>
@@ -45,7 +46,8 @@ class TrackerSkeletonSource {
   const SkeletonTracker& tracker() const { return *tracker_; }
 
  private:
-  Expected<std::optional<Skeleton>> Track(int64_t index, const SensorFrame& frame);
+  Expected<std::optional<Skeleton>> Track(int64_t index, const SensorFrame& frame,
+                                          const FramePoseHint& pose);
 
   SensorInfo info_;
   std::unique_ptr<SkeletonTracker> tracker_;

@@ -9,6 +9,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "capture-client/slam/rgbd_slam.h"
 #include "capture-client/synthetic/synthetic_scene.h"
 #include "common/estimate/median.h"
 #include "tests/eval/body_heading.h"
@@ -30,6 +31,9 @@ double ProcessCpuMs() {
 // kNearDistanceM ahead, by at most kNearMaxShiftM.
 constexpr double kNearDistanceM = 1.8;
 constexpr double kNearMaxShiftM = 1.2;
+// SLAM's depth noise at 1 m for rendered frames, as the synthetic source declares it
+// (synthetic_source.cc: the Kinect-like noise model's, doubled for keypoints on depth edges).
+constexpr double kSlamDepthSigma1mM = 0.003;
 
 constexpr int kCaseCount = 5;
 const char* kCases[kCaseCount] = {"back_facing", "arm_in_front", "fast_motion", "partly_outside",
@@ -109,6 +113,7 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
   std::optional<CalibrationAlignment> alignment;
   const Eigen::Vector3d world_up = scene.world_up();
   std::optional<Skeleton> previous_truth, previous_world;
+  std::optional<capture::slam::RgbdSlam> slam;  // with o.slam_poses, from the first frame
   capture::TrackState last = capture::TrackState::kWaitingForCalibration;
   for (int f = 0; f < scene.frame_count(); f += step) {
     if (o.max_frames > 0 && row.frames >= o.max_frames) break;
@@ -122,13 +127,25 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
     const capture::SyntheticView view = scene.Render(f, camera, world_from_sensor, render);
     const Skeleton world = scene.skeleton_in_world(f);
     const Skeleton truth = world.Transformed(world_from_sensor.inverse());
+    if (o.slam_poses && !slam) {
+      capture::slam::SlamOptions so;
+      so.noise.depth_sigma_1m_m = kSlamDepthSigma1mM;
+      so.initial_world_from_sensor = world_from_sensor;
+      slam.emplace(camera, 0.001, so);
+    }
+    const std::optional<Eigen::Isometry3d> given =
+        slam ? slam->PredictedWorldFromSensor() : std::optional(world_from_sensor);
     const double cpu0 = ProcessCpuMs();
     const auto t0 = std::chrono::steady_clock::now();
     const capture::TrackFrameResult r =
-        tracker.Track(view.depth, world_from_sensor, scene.world_up());
+        tracker.Track(view.depth, given, given ? std::optional(world_up) : std::nullopt);
     const auto t1 = std::chrono::steady_clock::now();
     cpu.push_back(ProcessCpuMs() - cpu0);
     ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    if (slam) {
+      auto tracked = slam->Track(f / scene.frame_rate_hz(), view.color, view.depth, &view.mask);
+      if (!tracked.ok()) return tracked.error();
+    }
     ++row.frames;
     if (r.calibrated && row.calibration_frame < 0) row.calibration_frame = f;
     if (r.recovered) ++row.recoveries;
@@ -345,9 +362,10 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
 }
 
 std::set<std::string> TrackerFlags() {
-  return {"scenario",     "variants",    "iterations",    "subsample",      "body",
-          "limb-recheck", "turn-starts", "noise",         "seeds",          "json",
-          "torso-depth",  "held-twists", "front-confirm", "uncross-return", "static-scene"};
+  return {"scenario",      "variants",       "iterations",   "subsample",
+          "body",          "limb-recheck",   "turn-starts",  "noise",
+          "seeds",         "json",           "torso-depth",  "held-twists",
+          "front-confirm", "uncross-return", "static-scene", "sensor-pose"};
 }
 
 namespace {
@@ -467,6 +485,11 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
       if (!on.ok()) return on.error();
       *value = *on;
     }
+  if (auto pose = cl.Get("sensor-pose")) {
+    if (*pose != "truth" && *pose != "slam")
+      return MakeError("usage", "--sensor-pose must be truth or slam, got '" + *pose + "'");
+    o.slam_poses = *pose == "slam";
+  }
   if (auto depth = cl.Get("torso-depth")) {
     if (*depth != "off" && *depth != "calibrated" && *depth != "always")
       return MakeError("usage",

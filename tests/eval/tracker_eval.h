@@ -6,7 +6,7 @@
 //                        [--subsample K[,K...]] [--body FILE.glb|procedural]
 //                        [--limb-recheck N] [--turn-starts DEG] [--held-twists N]
 //                        [--front-confirm N] [--uncross-return on|off]
-//                        [--static-scene on|off] [--noise on|off]
+//                        [--static-scene on|off] [--noise on|off] [--sensor-pose truth|slam]
 //                        [--seeds N[,N...]] [--json FILE]
 //
 // --seeds: the scene's seeds, each a run of its own (default 1): the seed draws the depth
@@ -27,7 +27,14 @@
 // (SkeletonTrackerOptions::uncross_returns_limb, default on; off: the swap alone).
 // --static-scene on|off: the static scene learned beside the person while tracking, its
 // points dropped before the fit (SkeletonTrackerOptions::static_scene, static_scene_voxels.h;
-// default on; every scenario gives the tracker the sensor's pose).
+// default on; it needs the sensor's pose).
+// --sensor-pose truth|slam: the sensor pose (and the world's up) the tracker is given with each
+// frame: the scene's true one (default), or the one the recorder gives it for a sensor without
+// poses (clip_recorder.h's FramePoseHint): RGB-D SLAM's constant-velocity prediction for the
+// frame (slam/rgbd_slam.h; none until SLAM has founded its map on the first frame), SLAM then
+// tracking the frame's colour and depth with the rendered person mask (the recorder's is
+// segmented from the tracked skeleton), its world anchored at the first frame's true pose.
+// ms_per_frame stays the tracker's alone.
 // Per scenario, variant and speed setting (iterations x subsample), every sensor frame is
 // rendered with Kinect-like depth noise (on by default) and tracked, frames in order through
 // one tracker that is given the sensor pose and the world's up (as the synthetic source gives
@@ -104,6 +111,9 @@ struct TrackerEvalOptions {
   bool depth_noise = true;
   std::vector<int> seeds{1};  // each >= 1: the scene's seed, one run per seed
   int max_frames = -1;  // frames per run at most (-1: all); for tests
+  // The sensor pose the tracker is given: the truth, or (--sensor-pose slam) the RGB-D SLAM's
+  // prediction as the recorder gives it for a sensor without poses.
+  bool slam_poses = false;
   capture::SkeletonTrackerOptions tracker;
 };
 

@@ -34,6 +34,7 @@ TEST(SlamDegenerate, TexturelessFramesNeverFoundAMap) {
   }
   EXPECT_FALSE(slam.initialised());
   EXPECT_FALSE(slam.lost());  // nothing to be lost from
+  EXPECT_FALSE(slam.PredictedWorldFromSensor());
   EXPECT_TRUE(slam.ExportClipMap().points.empty());
 }
 
@@ -78,11 +79,16 @@ TEST(SlamDegenerate, TexturelessFrameAfterTheStartIsLostThenRelocalised) {
   EXPECT_EQ(lost->lost_reason, SlamLostReason::kTooFewFeatures);
   EXPECT_FALSE(lost->has_pose());
   EXPECT_TRUE(slam.lost());
+  EXPECT_FALSE(slam.PredictedWorldFromSensor());  // no pose to carry on
   const auto& f = s.frames[6];
   const auto back = slam.Track(f.timestamp_s, f.color, f.depth, &f.mask);
   ASSERT_TRUE(back.ok());
   EXPECT_EQ(back->status, SlamStatus::kRelocalised);
   EXPECT_FALSE(slam.lost());
+  // Relocalised: the relocalised pose, without a motion (none is known across the gap).
+  ASSERT_TRUE(slam.PredictedWorldFromSensor() && back->world_from_sensor);
+  EXPECT_LT((slam.PredictedWorldFromSensor()->matrix() - back->world_from_sensor->matrix()).norm(),
+            1e-12);
 }
 
 TEST(SlamDegenerate, TexturelessFrameWithTheFallbackOnIsDefined) {

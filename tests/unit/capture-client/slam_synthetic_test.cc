@@ -89,6 +89,38 @@ TEST(SlamSynthetic, TracksTheHandheldSensorThroughTheRoom) {
   EXPECT_GT(slam.ExportClipMap().points.size(), 300u);
 }
 
+TEST(SlamSynthetic, PredictsTheNextPoseByConstantVelocity) {
+  // The recorder gives its skeleton tracker SLAM's prediction for a frame before SLAM tracks
+  // it (clip_recorder.h's FramePoseHint). The operator walks a smooth arc: carrying the last
+  // frame-to-frame motion on must land nearer the next pose than the last pose does: at 15
+  // frames a second it misses by 1.1 cm on the mean against 2.5 for the last pose (measured);
+  // bound 0.6 times.
+  const Sequence& s = test_input::WalkHandheld(60, 2);
+  RgbdSlam slam(s.camera, s.depth_scale_m, SyntheticSensorOptions());
+  EXPECT_FALSE(slam.PredictedWorldFromSensor());  // no map yet
+  const Eigen::Isometry3d map_from_truth = s.frames[0].truth_world_from_sensor->inverse();
+  double predicted_m = 0, held_m = 0;
+  std::optional<Eigen::Isometry3d> last;
+  for (size_t i = 0; i < s.frames.size(); ++i) {
+    const auto& f = s.frames[i];
+    const std::optional<Eigen::Isometry3d> predicted = slam.PredictedWorldFromSensor();
+    const Eigen::Isometry3d truth = map_from_truth * *f.truth_world_from_sensor;
+    if (i == 1) {  // one pose seen: no motion yet, so the prediction is that pose
+      ASSERT_TRUE(predicted && last);
+      EXPECT_LT((predicted->matrix() - last->matrix()).norm(), 1e-12);
+    }
+    if (i >= 2) {
+      ASSERT_TRUE(predicted) << i;
+      predicted_m += (predicted->translation() - truth.translation()).norm();
+      held_m += (last->translation() - truth.translation()).norm();
+    }
+    const auto r = slam.Track(f.timestamp_s, f.color, f.depth, &f.mask);
+    ASSERT_TRUE(r.ok() && r->has_pose()) << i;
+    last = r->world_from_sensor;
+  }
+  EXPECT_LT(predicted_m, 0.6 * held_m);
+}
+
 // Whether a map point's first observation (the keypoint it was made from) lies on the
 // subject, or within `margin` pixels of it, in that keyframe's mask.
 bool MadeFromSubject(const RgbdSlam& slam, const Sequence& s, const MapPoint& p, int margin) {
