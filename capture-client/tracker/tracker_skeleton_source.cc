@@ -30,7 +30,9 @@ std::string TrackerSourceStats::Describe() const {
   if (!from_calibration_pose)
     s << ", the head " << std::fixed << std::setprecision(2) << head_scale << " and the legs "
       << leg_scale << " times the average's as measured from the silhouette";
-  s << "; " << losses << " losses, " << recoveries << " recoveries";
+  s << "; " << losses << " losses, " << recoveries << " recoveries; the sensor's pose on " << posed
+    << " of " << frames << " frames";
+  if (posed < frames) s << " (the static scene beside the subject is left in on the others)";
   return s.str();
 }
 
@@ -61,6 +63,7 @@ Expected<std::optional<Skeleton>> TrackerSkeletonSource::Track(int64_t index,
       tracker_->Track(frame.depth, pose.world_from_sensor,
                       pose.world_from_sensor ? pose.world_up : std::optional<Eigen::Vector3d>());
   ++stats_.frames;
+  stats_.posed += pose.world_from_sensor.has_value();
   ++stats_.detect[static_cast<int>(r.detect)];
   if (r.calibrated && stats_.calibration_frame < 0) {
     stats_.calibration_frame = static_cast<int>(index);

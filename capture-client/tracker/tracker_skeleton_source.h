@@ -25,6 +25,9 @@ struct TrackerSourceStats {
   // (head_size.h, crotch_height.h) and fitted on the fly; 1 otherwise.
   double head_scale = 1, leg_scale = 1;
   int losses = 0, recoveries = 0;
+  // Frames given the sensor's pose (the source's, or SLAM's prediction): only on those does
+  // the tracker learn and leave out the static scene beside the subject (static_scene_voxels.h).
+  int posed = 0;
   // Frames per detection outcome (Index: DetectStatus).
   std::array<int, 4> detect{};
 

@@ -30,8 +30,28 @@ TEST(RecordTrack, SyntheticCalibrationPoseIsTrackedAndRecorded) {
             std::string::npos)
       << record.out;
   EXPECT_NE(record.out.find("recorded 40 frames"), std::string::npos) << record.out;
+  // The synthetic source knows its poses, and the tracker is given every one.
+  EXPECT_NE(record.out.find("the sensor's pose on 40 of 40 frames"), std::string::npos)
+      << record.out;
   const auto info = RunProcess({kCapture, "info", clip});
   ASSERT_EQ(info.exit_code, 0) << info.err;
+}
+
+TEST(RecordTrack, WithSlamPosesTheTrackerIsGivenSlamsPrediction) {
+  // --poses slam tracks the sensor as for a source without poses, after each frame's skeleton:
+  // the tracker is given SLAM's prediction, which exists from the second frame on (SLAM founds
+  // its map on the first), so 39 of 40 frames have a pose.
+  TempDir tmp;
+  const auto record =
+      RunProcess({kCapture, "record", "--source", "synthetic:turn-and-kick", "--frames", "40",
+                  "--skeleton", "track", "--poses", "slam", "--out", tmp.path() + "/clip"},
+                 std::chrono::seconds(300));
+  ASSERT_EQ(record.exit_code, 0) << record.err;
+  EXPECT_NE(record.out.find("tracker: 40 of 40 frames tracked"), std::string::npos) << record.out;
+  EXPECT_NE(record.out.find("the sensor's pose on 39 of 40 frames (the static scene beside the "
+                            "subject is left in on the others)"),
+            std::string::npos)
+      << record.out;
 }
 
 TEST(RecordTrack, AWalkWithoutTheCalibrationPoseReportsTheMeasuredBody) {
