@@ -45,6 +45,7 @@ void SkeletonTrackerOptions::Check() const {
   REENACT_CHECK(limb_search_trigger >= 0 && limb_search_trigger <= 1,
                 "limb_search_trigger in [0, 1]");
   limb_search.Check();
+  turn_start_jump.Check();
   REENACT_CHECK(uncross_gain >= 0 && uncross_gain < 1, "uncross_gain in [0, 1)");
   REENACT_CHECK(limb_search_gain >= 0 && limb_search_gain < 1, "limb_search_gain in [0, 1)");
   REENACT_CHECK(limb_recheck_hypotheses >= 0 && limb_recheck_gain >= 0 && limb_recheck_gain < 1,
@@ -319,7 +320,13 @@ BodyFitResult SkeletonTracker::FitFromPrediction(const ArticulatedPose& start,
       }));
   }
   BodyFitResult fit = Refine(FitBody(*body_, start, obs, options_.fit, options_.limits), obs);
-  for (std::future<BodyFitResult>& t : turned) fit = CheaperOf(std::move(fit), t.get());
+  const std::optional<BodyFitResult> own =
+      options_.turn_start_jump_check && !turned.empty() ? std::optional(fit) : std::nullopt;
+  for (std::future<BodyFitResult>& t : turned) {
+    BodyFitResult r = t.get();
+    if (own && LimbJumpedFromItsData(*body_, *own, r, options_.turn_start_jump)) continue;
+    fit = CheaperOf(std::move(fit), std::move(r));
+  }
   if (options_.uncross_limbs) fit = Uncross(std::move(fit), obs, start);
   if (options_.limb_recheck_hypotheses > 0)
     fit = RecheckLimb(std::move(fit), obs, static_cast<Limb>(recheck_limb_));

@@ -22,7 +22,8 @@
 //    pose, outside the static scene learned beside the person on earlier frames
 //    (static_scene_voxels.h: an object the person walks up to), fit the
 //    articulated body (body_fit.h) from the prediction, and from the prediction turned either
-//    way about the floor's up (turn_start_deg), keeping the cheapest fit.
+//    way about the floor's up (turn_start_deg), keeping the cheapest fit (a turned one only
+//    when it does not swing a limb in view out of its data, limb_jump.h).
 //    When many points are left unexplained, limbs are re-posed by a hypothesis search
 //    (limb_search.h) and fitted again; optionally, every frame one limb in turn is
 //    re-checked from its best few hypotheses, each fitted (limb_recheck_hypotheses, below). A fit
@@ -68,6 +69,7 @@
 #include "capture-client/tracker/geodesic_extremities.h"
 #include "capture-client/tracker/head_size.h"
 #include "capture-client/tracker/heading.h"
+#include "capture-client/tracker/limb_jump.h"
 #include "capture-client/tracker/limb_search.h"
 #include "capture-client/tracker/limb_swap.h"
 #include "capture-client/tracker/person_detector.h"
@@ -149,6 +151,11 @@ struct SkeletonTrackerOptions {
   // the truth cost 20-60 % less. Three fits a frame instead of one, the turned ones on threads
   // of their own while the calling thread fits the prediction (docs/measurements.md).
   double turn_start_deg = 25;
+  // A turned fit is not kept when a limb jumped from its data to it from the prediction's own
+  // fit (limb_jump.h): an arm swung behind the head costs nothing in the free-space term, so a
+  // turned start could take it there on a frame the own fit explains poorly.
+  bool turn_start_jump_check = true;
+  LimbJumpOptions turn_start_jump;
   double good_inlier_share = 0.5;       // (0, 1]
   double min_coverage = 0.3;            // (0, 1]
   int lost_after_frames = 3;            // >= 1

@@ -362,10 +362,10 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
 }
 
 std::set<std::string> TrackerFlags() {
-  return {"scenario",      "variants",       "iterations",   "subsample",
-          "body",          "limb-recheck",   "turn-starts",  "noise",
-          "seeds",         "json",           "torso-depth",  "held-twists",
-          "front-confirm", "uncross-return", "static-scene", "sensor-pose"};
+  return {"scenario",     "variants",    "iterations",    "subsample",      "body",
+          "limb-recheck", "turn-starts", "noise",         "seeds",          "json",
+          "torso-depth",  "held-twists", "front-confirm", "uncross-return", "static-scene",
+          "sensor-pose",  "limb-jump"};
 }
 
 namespace {
@@ -479,6 +479,7 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
   }
   for (const auto& [flag, value] : {std::pair{"uncross-return", &o.tracker.uncross_returns_limb},
                                     std::pair{"static-scene", &o.tracker.static_scene.enabled},
+                                    std::pair{"limb-jump", &o.tracker.turn_start_jump_check},
                                     std::pair{"noise", &o.depth_noise}})
     if (auto text = cl.Get(flag)) {
       auto on = ParseOnOff(flag, *text);

@@ -6,8 +6,8 @@
 //                        [--subsample K[,K...]] [--body FILE.glb|procedural]
 //                        [--limb-recheck N] [--turn-starts DEG] [--held-twists N]
 //                        [--front-confirm N] [--uncross-return on|off]
-//                        [--static-scene on|off] [--noise on|off] [--sensor-pose truth|slam]
-//                        [--seeds N[,N...]] [--json FILE]
+//                        [--static-scene on|off] [--limb-jump on|off] [--noise on|off]
+//                        [--sensor-pose truth|slam] [--seeds N[,N...]] [--json FILE]
 //
 // --seeds: the scene's seeds, each a run of its own (default 1): the seed draws the depth
 // noise (and walk-handheld's hand shake), and a tracker fits every frame from the last one,
@@ -28,6 +28,8 @@
 // --static-scene on|off: the static scene learned beside the person while tracking, its
 // points dropped before the fit (SkeletonTrackerOptions::static_scene, static_scene_voxels.h;
 // default on; it needs the sensor's pose).
+// --limb-jump on|off: a turned start's fit refused where a limb jumped from its data
+// (SkeletonTrackerOptions::turn_start_jump_check, limb_jump.h; default on).
 // --sensor-pose truth|slam: the sensor pose (and the world's up) the tracker is given with each
 // frame: the scene's true one (default), or the one the recorder gives it for a sensor without
 // poses (clip_recorder.h's FramePoseHint): RGB-D SLAM's constant-velocity prediction for the

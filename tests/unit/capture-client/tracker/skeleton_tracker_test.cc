@@ -299,6 +299,9 @@ TEST(SkeletonTracker, BadInputIsABug) {
     EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
   }
   bad = {};
+  bad.turn_start_jump.kept_share = 2;
+  EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
+  bad = {};
   bad.front_check_every = 0;
   EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
   bad = {};

@@ -1,0 +1,31 @@
+#include "capture-client/tracker/limb_jump.h"
+
+#include <cmath>
+
+#include "capture-client/tracker/extremity_pose.h"
+#include "common/error/check.h"
+
+namespace reenact::capture {
+
+void LimbJumpOptions::Check() const {
+  REENACT_CHECK(max_move_m > 0 && std::isfinite(max_move_m), "limb jump max_move_m must be > 0");
+  REENACT_CHECK(in_view_share >= 0 && in_view_share <= 1 && kept_share >= 0 && kept_share <= 1,
+                "limb jump in_view_share and kept_share must be in [0, 1]");
+}
+
+std::optional<Limb> LimbJumpedFromItsData(const ArticulatedBody& body, const BodyFitResult& own,
+                                          const BodyFitResult& other,
+                                          const LimbJumpOptions& options) {
+  options.Check();
+  for (int l = 0; l < kLimbCount; ++l) {
+    const Limb limb = static_cast<Limb>(l);
+    const int end = static_cast<int>(LimbLower(limb));
+    const int seen = own.support[end];
+    if (seen == 0 || seen < options.in_view_share * own.expected_support[end]) continue;
+    const double move = (LimbEnd(body, other.posed, limb) - LimbEnd(body, own.posed, limb)).norm();
+    if (move > options.max_move_m && other.support[end] < options.kept_share * seen) return limb;
+  }
+  return std::nullopt;
+}
+
+}  // namespace reenact::capture
