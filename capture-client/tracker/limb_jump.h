@@ -18,7 +18,8 @@
 // the CMU walk 131_01 seen at 15 frames a second, turned fits that moved such a forearm 0.5 m
 // (1-9 points on about 30 expected, none after) were right. A turned fit that re-finds a limb
 // the own fit had wrong moves it as far but keeps a fair share of its end segment's points
-// (72-100 % in the cases measured there).
+// (72-100 % in the cases measured there). Known limit: a fit in which the opposite limb took
+// the points the jumped one left (the arms' data swapped, not left) counts as a jump too.
 // Frames: the sensor frame (OpenCV axes, metres).
 
 #include <optional>
