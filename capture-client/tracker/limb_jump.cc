@@ -9,8 +9,9 @@ namespace reenact::capture {
 
 void LimbJumpOptions::Check() const {
   REENACT_CHECK(max_move_m > 0 && std::isfinite(max_move_m), "limb jump max_move_m must be > 0");
-  REENACT_CHECK(in_view_share >= 0 && in_view_share <= 1 && kept_share >= 0 && kept_share <= 1,
-                "limb jump in_view_share and kept_share must be in [0, 1]");
+  REENACT_CHECK(in_view_share >= 0 && in_view_share <= 1 && kept_share >= 0 && kept_share <= 1 &&
+                    swap_share >= 0 && swap_share <= 1,
+                "limb jump in_view_share, kept_share and swap_share must be in [0, 1]");
 }
 
 std::optional<Limb> LimbJumpedFromItsData(const ArticulatedBody& body, const BodyFitResult& own,
@@ -23,7 +24,10 @@ std::optional<Limb> LimbJumpedFromItsData(const ArticulatedBody& body, const Bod
     const int seen = own.support[end];
     if (seen == 0 || seen < options.in_view_share * own.expected_support[end]) continue;
     const double move = (LimbEnd(body, other.posed, limb) - LimbEnd(body, own.posed, limb)).norm();
-    if (move > options.max_move_m && other.support[end] < options.kept_share * seen) return limb;
+    if (!(move > options.max_move_m) || other.support[end] >= options.kept_share * seen) continue;
+    const int opposite = static_cast<int>(LimbLower(static_cast<Limb>(l ^ 1)));
+    const int taken = other.support[opposite] - own.support[opposite];
+    if (taken < options.swap_share * (seen - other.support[end])) return limb;
   }
   return std::nullopt;
 }

@@ -18,8 +18,11 @@
 // the CMU walk 131_01 seen at 15 frames a second, turned fits that moved such a forearm 0.5 m
 // (1-9 points on about 30 expected, none after) were right. A turned fit that re-finds a limb
 // the own fit had wrong moves it as far but keeps a fair share of its end segment's points
-// (72-100 % in the cases measured there). Known limit: a fit in which the opposite limb took
-// the points the jumped one left (the arms' data swapped, not left) counts as a jump too.
+// (72-100 % in the cases measured there). Nor is a swap: a fit in which the opposite limb's end
+// segment took at least half of the points this one left (the arms' data swapped, not left;
+// the crossed-limb code, limb_swap.h, judges swaps). On CesiumMan's CMU walk 131_01, near,
+// seed 4, frame 102, the right forearm left 58 points and the left one took 75; counted as a
+// jump, that row went 12.07 -> 16.31 cm.
 // Frames: the sensor frame (OpenCV axes, metres).
 
 #include <optional>
@@ -35,13 +38,16 @@ struct LimbJumpOptions {
                                // its expected support (BodyFitResult), [0, 1]
   double kept_share = 0.1;     // jumped: the other fit's end segment keeps less than this share
                                // of the own fit's support, [0, 1]
+  double swap_share = 0.5;     // swapped, not jumped: the opposite limb's end segment gained at
+                               // least this share of the points lost, [0, 1]
   void Check() const;
 };
 
 // The first limb (in Limb's order) that jumped from `own` to `other` (above): its end (LimbEnd,
 // extremity_pose.h) more than max_move_m apart in the two, its end segment in view in `own`
-// with some support, and with less than kept_share of that support in `other`; nullopt when
-// none. Options out of range are a bug.
+// with some support, with less than kept_share of that support in `other`, and not swapped
+// (the opposite limb's end segment gained less than swap_share of the points lost); nullopt
+// when none. Options out of range are a bug.
 std::optional<Limb> LimbJumpedFromItsData(const ArticulatedBody& body, const BodyFitResult& own,
                                           const BodyFitResult& other,
                                           const LimbJumpOptions& options = {});

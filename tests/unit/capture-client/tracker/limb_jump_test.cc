@@ -113,12 +113,37 @@ TEST(LimbJump, TheOwnFitsForearmIsInViewAndTheOtherKeepsLessThanItsShare) {
   EXPECT_EQ(LimbJumpedFromItsData(s.body, own, other, o), Limb::kRightArm);
 }
 
+TEST(LimbJump, ASwapOfTheArmsDataIsNoJump) {
+  // The support counts as given, the right arm swung behind the head as above: the right
+  // forearm loses its 100 points. When the left forearm takes at least half of them (here from
+  // none), the arms' data were swapped, not left: no jump. Taking 49 is less than half.
+  const ArmBehindTheHead s;
+  const BodyObservation data = PointsObservation(RenderBodyPoints(s.body, s.down));
+  BodyFitResult own = At(s.body, s.down, s.down, data), other = At(s.body, s.behind, s.down, data);
+  constexpr int kLeftForearm = static_cast<int>(S::kLeftForearm);
+  own.support[kRightForearm] = 100;
+  own.expected_support[kRightForearm] = 150;
+  own.support[kLeftForearm] = 0;
+  other.support[kRightForearm] = 0;
+  other.support[kLeftForearm] = 50;
+  EXPECT_FALSE(LimbJumpedFromItsData(s.body, own, other));
+  other.support[kLeftForearm] = 49;
+  EXPECT_EQ(LimbJumpedFromItsData(s.body, own, other), Limb::kRightArm);
+  // The legs' pairs are their own: a left shin's gain does not excuse the right forearm.
+  other.support[static_cast<int>(S::kLeftShin)] += 100;
+  EXPECT_EQ(LimbJumpedFromItsData(s.body, own, other), Limb::kRightArm);
+  // With swap_share 0, a fit in which the left forearm lost no points counts as swapped.
+  LimbJumpOptions o;
+  o.swap_share = 0;
+  EXPECT_FALSE(LimbJumpedFromItsData(s.body, own, other, o));
+}
+
 TEST(LimbJump, BadOptionsAreABug) {
   const ArmBehindTheHead s;
   const BodyObservation data = PointsObservation(RenderBodyPoints(s.body, s.down));
   const BodyFitResult own = At(s.body, s.down, s.down, data);
   for (const auto& bad : {LimbJumpOptions{.max_move_m = 0}, LimbJumpOptions{.in_view_share = -0.1},
-                          LimbJumpOptions{.kept_share = 1.5}}) {
+                          LimbJumpOptions{.kept_share = 1.5}, LimbJumpOptions{.swap_share = 2}}) {
     EXPECT_THROW(bad.Check(), CheckError);
     EXPECT_THROW(LimbJumpedFromItsData(s.body, own, own, bad), CheckError);
   }
