@@ -6,6 +6,13 @@
 #include "common/error/check.h"
 
 namespace reenact::capture {
+namespace {
+
+// The same limb on the body's other side (Limb's order: left arm, right arm, left leg, right
+// leg).
+Limb OtherSide(Limb limb) { return static_cast<Limb>(static_cast<int>(limb) ^ 1); }
+
+}  // namespace
 
 void LimbJumpOptions::Check() const {
   REENACT_CHECK(max_move_m > 0 && std::isfinite(max_move_m), "limb jump max_move_m must be > 0");
@@ -25,7 +32,7 @@ std::optional<Limb> LimbJumpedFromItsData(const ArticulatedBody& body, const Bod
     if (seen == 0 || seen < options.in_view_share * own.expected_support[end]) continue;
     const double move = (LimbEnd(body, other.posed, limb) - LimbEnd(body, own.posed, limb)).norm();
     if (!(move > options.max_move_m) || other.support[end] >= options.kept_share * seen) continue;
-    const int opposite = static_cast<int>(LimbLower(static_cast<Limb>(l ^ 1)));
+    const int opposite = static_cast<int>(LimbLower(OtherSide(limb)));
     const int taken = other.support[opposite] - own.support[opposite];
     if (taken < options.swap_share * (seen - other.support[end])) return limb;
   }
