@@ -25,22 +25,19 @@ double AxisDistance(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
   return (p - a - t * ab).norm();
 }
 
-// The upper segment's directions: a cube's faces, edges and corners.
-constexpr int kCubeDirectionCount = 26;
-// The direction index every held hypothesis (upper segment kept where it is) shares.
-constexpr int kHeldDirection = kCubeDirectionCount;
+// Two clamped hypotheses of one direction closer than this (radians; the hinge angle and each
+// entry of the upper segment's rotation) are one.
+constexpr double kSameAngle = 1e-9;
 
-// One hypothesis: the limb's two joints (after clamping to the limits) and its cost.
+// One hypothesis and its cost.
 struct ScoredHypothesis {
   double cost;
-  int direction;  // index of the upper segment's direction
-  Eigen::Matrix3d upper_local;
-  double hinge_angle;
+  LimbHypothesis h;
   int lost_taken;  // lost points (see ScoreLimbHypotheses) within outlier_m of the limb
 };
 
 // `pose` with the limb posed as `h` (as scored: every joint clamped to the limits).
-ArticulatedPose WithLimb(const ArticulatedPose& pose, Limb limb, const ScoredHypothesis& h,
+ArticulatedPose WithLimb(const ArticulatedPose& pose, Limb limb, const LimbHypothesis& h,
                          const JointLimits& limits) {
   ArticulatedPose out = pose;
   out.local[static_cast<int>(LimbUpper(limb))] = h.upper_local;
@@ -168,15 +165,44 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
   if (lost) *lost = n_lost;
   std::vector<ScoredHypothesis> scored;
   if (n_lost <= min_lost) return scored;
-  scored.reserve(kCubeDirectionCount * 9 + options.held_twists * 5);
-  auto score = [&](const Eigen::Matrix3d& upper_local, double hinge_deg, int direction) {
-    ArticulatedPose candidate = pose;
-    candidate.local[static_cast<int>(upper)] = upper_local;
-    candidate.hinge_angle[static_cast<int>(lower)] = hinge_deg * std::numbers::pi / 180;
-    ArticulatedBody::Clamp(&candidate, limits);
+  const std::vector<LimbHypothesis> hypotheses = LimbHypotheses(pose, limb, limits, options);
+  scored.reserve(hypotheses.size());
+  ArticulatedPose candidate = pose;
+  for (const LimbHypothesis& h : hypotheses) {
+    candidate.local[static_cast<int>(upper)] = h.upper_local;
+    candidate.hinge_angle[static_cast<int>(lower)] = h.hinge_angle;
     const double cost = cost_of(candidate);
-    scored.push_back({cost, direction, candidate.local[static_cast<int>(upper)],
-                      candidate.hinge_angle[static_cast<int>(lower)], taken});
+    scored.push_back({cost, h, taken});
+  }
+  return scored;
+}
+
+}  // namespace
+
+void LimbSearchOptions::Check() const {
+  REENACT_CHECK(cap_m > 0 && min_gain >= 0 && min_gain < 1, "cap_m > 0, 0 <= min_gain < 1");
+  REENACT_CHECK(min_lost_share >= 0 && min_lost_share <= 1, "min_lost_share in [0, 1]");
+  REENACT_CHECK(held_twists >= 0, "held_twists must be >= 0");
+}
+
+std::vector<LimbHypothesis> LimbHypotheses(const ArticulatedPose& pose, Limb limb,
+                                           const JointLimits& limits,
+                                           const LimbSearchOptions& options) {
+  options.Check();
+  const int upper = static_cast<int>(LimbUpper(limb)), lower = static_cast<int>(LimbLower(limb));
+  std::vector<LimbHypothesis> out;
+  out.reserve(kHeldLimbDirection * 9 + options.held_twists * 5);
+  auto add = [&](const Eigen::Matrix3d& upper_local, double hinge_deg, int direction) {
+    ArticulatedPose candidate = pose;
+    candidate.local[upper] = upper_local;
+    candidate.hinge_angle[lower] = hinge_deg * std::numbers::pi / 180;
+    ArticulatedBody::Clamp(&candidate, limits);
+    const LimbHypothesis h{direction, candidate.local[upper], candidate.hinge_angle[lower]};
+    for (auto k = out.rbegin(); k != out.rend() && k->direction == direction; ++k)
+      if (std::abs(k->hinge_angle - h.hinge_angle) <= kSameAngle &&
+          (k->upper_local - h.upper_local).cwiseAbs().maxCoeff() <= kSameAngle)
+        return;
+    out.push_back(h);
   };
   int direction = 0;
   for (int i = -1; i <= 1; ++i)
@@ -196,29 +222,21 @@ std::vector<ScoredHypothesis> ScoreLimbHypotheses(
             rotation.col(0) = x;
             rotation.col(1) = z.cross(x);
             rotation.col(2) = z;
-            score(rotation, angle, direction);
+            add(rotation, angle, direction);
           }
         ++direction;
       }
   // The upper segment held (its bone keeps its direction), the hinge's plane turned about it:
   // a forearm or shin swung where the local fit lost it while its upper segment is tracked.
-  const Eigen::Matrix3d& held = pose.local[static_cast<int>(upper)];
+  const Eigen::Matrix3d& held = pose.local[upper];
   for (int twist = 0; twist < options.held_twists; ++twist) {
     const Eigen::Matrix3d turned =
         held * Eigen::AngleAxisd(twist * 2 * std::numbers::pi / options.held_twists,
                                  Eigen::Vector3d::UnitZ())
                    .toRotationMatrix();
-    for (double angle : {20.0, 45.0, 70.0, 95.0, 120.0}) score(turned, angle, kHeldDirection);
+    for (double angle : {20.0, 45.0, 70.0, 95.0, 120.0}) add(turned, angle, kHeldLimbDirection);
   }
-  return scored;
-}
-
-}  // namespace
-
-void LimbSearchOptions::Check() const {
-  REENACT_CHECK(cap_m > 0 && min_gain >= 0 && min_gain < 1, "cap_m > 0, 0 <= min_gain < 1");
-  REENACT_CHECK(min_lost_share >= 0 && min_lost_share <= 1, "min_lost_share in [0, 1]");
-  REENACT_CHECK(held_twists >= 0, "held_twists must be >= 0");
+  return out;
 }
 
 int SearchLimbs(const ArticulatedBody& body, const BodyObservation& obs, const BodyFitOptions& fit,
@@ -249,7 +267,7 @@ int SearchLimbs(const ArticulatedBody& body, const BodyObservation& obs, const B
         pick = l, pick_h = *best, pick_gain = gain;
     }
     if (pick < 0) break;
-    *pose = WithLimb(*pose, static_cast<Limb>(pick), pick_h, limits);
+    *pose = WithLimb(*pose, static_cast<Limb>(pick), pick_h.h, limits);
     moved[pick] = true;
     ++changed;
   }
@@ -272,12 +290,12 @@ std::vector<ArticulatedPose> RankLimbHypotheses(const ArticulatedBody& body,
   std::stable_sort(
       scored.begin(), scored.end(),
       [](const ScoredHypothesis& a, const ScoredHypothesis& b) { return a.cost < b.cost; });
-  std::vector<bool> used(kHeldDirection + 1, false);
-  for (const ScoredHypothesis& h : scored) {
+  std::vector<bool> used(kHeldLimbDirection + 1, false);
+  for (const ScoredHypothesis& c : scored) {
     if (static_cast<int>(ranked.size()) >= count) break;
-    if (used[h.direction]) continue;
-    used[h.direction] = true;
-    ranked.push_back(WithLimb(pose, limb, h, limits));
+    if (used[c.h.direction]) continue;
+    used[c.h.direction] = true;
+    ranked.push_back(WithLimb(pose, limb, c.h, limits));
   }
   return ranked;
 }

@@ -52,6 +52,25 @@ struct LimbSearchOptions {
   void Check() const;
 };
 
+// One posing of a limb (in-range joint values): the upper segment's rotation in its parent's
+// frame and the hinge's angle (radians), and the index of the upper segment's direction: 0-25
+// the cube's, kHeldLimbDirection for the held ones.
+struct LimbHypothesis {
+  int direction = 0;
+  Eigen::Matrix3d upper_local = Eigen::Matrix3d::Identity();
+  double hinge_angle = 0;
+};
+inline constexpr int kHeldLimbDirection = 26;
+
+// The search's hypotheses for `limb` at `pose` (above), in that order, each clamped to the
+// limits. One that the limits clamp onto an earlier one of the same direction (within 1e-9
+// rad) is left out, since it could only tie with it: a thigh's twist beyond its range, a
+// direction outside the hip's cone (22 % of a leg's 274 on the procedural turn-and-kick and
+// CMU walk; an arm's stay distinct). Options out of range are a bug.
+std::vector<LimbHypothesis> LimbHypotheses(const ArticulatedPose& pose, Limb limb,
+                                           const JointLimits& limits,
+                                           const LimbSearchOptions& options = {});
+
 // Returns the number of limbs re-posed (0 to 4); *pose is changed only for those.
 int SearchLimbs(const ArticulatedBody& body, const BodyObservation& observation,
                 const BodyFitOptions& fit, const JointLimits& limits,

@@ -364,6 +364,51 @@ TEST(LimbSearch, BadOptionsAreABug) {
   EXPECT_THROW(o.Check(), CheckError);
 }
 
+TEST(LimbSearch, HypothesesAreWithinTheLimitsAndDistinctPerDirection) {
+  const ArticulatedPose pose = SomePose();
+  constexpr int kAll = 26 * 9 + 8 * 5;  // cube directions x 9 bends, 8 held twists x 5 bends
+  const auto same = [](const LimbHypothesis& a, const LimbHypothesis& b) {
+    return a.direction == b.direction && std::abs(a.hinge_angle - b.hinge_angle) <= 1e-9 &&
+           (a.upper_local - b.upper_local).cwiseAbs().maxCoeff() <= 1e-9;
+  };
+  for (int l = 0; l < kLimbCount; ++l) {
+    const Limb limb = static_cast<Limb>(l);
+    const std::vector<LimbHypothesis> hs = LimbHypotheses(pose, limb, JointLimits{});
+    std::vector<bool> seen(kHeldLimbDirection + 1, false);
+    for (size_t i = 0; i < hs.size(); ++i) {
+      seen[hs[i].direction] = true;
+      // Within the limits: clamping the posed limb changes nothing.
+      ArticulatedPose p = pose;
+      p.local[static_cast<int>(LimbUpper(limb))] = hs[i].upper_local;
+      p.hinge_angle[static_cast<int>(LimbLower(limb))] = hs[i].hinge_angle;
+      ArticulatedPose clamped = p;
+      ArticulatedBody::Clamp(&clamped, JointLimits{});
+      EXPECT_TRUE(
+          clamped.local[static_cast<int>(LimbUpper(limb))].isApprox(hs[i].upper_local, 1e-9));
+      EXPECT_NEAR(clamped.hinge_angle[static_cast<int>(LimbLower(limb))], hs[i].hinge_angle, 1e-9);
+      for (size_t k = 0; k < i; ++k)
+        EXPECT_FALSE(same(hs[i], hs[k])) << l << ": " << i << ", " << k;
+    }
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), true), kHeldLimbDirection + 1) << l;
+    const bool arm = limb == Limb::kLeftArm || limb == Limb::kRightArm;
+    // An arm's shoulder reaches every direction, its twist unlimited, and its elbow bends
+    // past 120 degrees: nothing clamps one hypothesis onto another. A thigh's twist (0.8 rad)
+    // and cone (2.2 rad) do.
+    if (arm)
+      EXPECT_EQ(hs.size(), kAll) << l;
+    else
+      EXPECT_LT(hs.size(), kAll) << l;
+  }
+  // With the hip's limits opened, a leg keeps all of them too; without held twists, the cube's.
+  JointLimits open;
+  open.hip_max = kPi;
+  open.hip_twist_max = kPi;
+  EXPECT_EQ(LimbHypotheses(pose, Limb::kLeftLeg, open).size(), kAll);
+  EXPECT_EQ(LimbHypotheses(pose, Limb::kLeftArm, JointLimits{}, {.held_twists = 0}).size(), 26 * 9);
+  EXPECT_THROW(LimbHypotheses(pose, Limb::kLeftArm, JointLimits{}, {.held_twists = -1}),
+               CheckError);
+}
+
 TEST(LimbSearch, RankedHypothesesBringBackAnArmFromTheWrongSideOfTheBody) {
   const ArticulatedBody body(BodyShape::FromHeight(1.75));
   ArticulatedPose truth = SomePose();
