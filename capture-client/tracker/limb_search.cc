@@ -25,6 +25,10 @@ double AxisDistance(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
   return (p - a - t * ab).norm();
 }
 
+// The upper segment's directions: a cube's faces, edges and corners; the held hypotheses'
+// index follows them.
+constexpr int kCubeDirectionCount = 26;
+static_assert(kHeldLimbDirection == kCubeDirectionCount);
 // Two clamped hypotheses of one direction closer than this (radians; the hinge angle and each
 // entry of the upper segment's rotation) are one.
 constexpr double kSameAngle = 1e-9;
@@ -191,7 +195,7 @@ std::vector<LimbHypothesis> LimbHypotheses(const ArticulatedPose& pose, Limb lim
   options.Check();
   const int upper = static_cast<int>(LimbUpper(limb)), lower = static_cast<int>(LimbLower(limb));
   std::vector<LimbHypothesis> out;
-  out.reserve(kHeldLimbDirection * 9 + options.held_twists * 5);
+  out.reserve(kCubeDirectionCount * 9 + options.held_twists * 5);
   auto add = [&](const Eigen::Matrix3d& upper_local, double hinge_deg, int direction) {
     ArticulatedPose candidate = pose;
     candidate.local[upper] = upper_local;
