@@ -41,6 +41,7 @@ void SkeletonTrackerOptions::Check() const {
   calibration.Check();
   REENACT_CHECK(subsample >= 1, "subsample must be >= 1");
   REENACT_CHECK(keep_near_model_m > 0, "keep_near_model_m must be > 0");
+  REENACT_CHECK(max_gap_ratio >= 1 && std::isfinite(max_gap_ratio), "max_gap_ratio must be >= 1");
   static_scene.Check();
   REENACT_CHECK(limb_search_trigger >= 0 && limb_search_trigger <= 1,
                 "limb_search_trigger in [0, 1]");
@@ -113,6 +114,9 @@ void SkeletonTracker::Reset() {
   calibration_.reset();
   body_.reset();
   has_previous_ = false;
+  pose_time_s_.reset();
+  previous_time_s_.reset();
+  gap_ratio_ = 1;
   bad_frames_ = 0;
   uncalibrated_frames_ = 0;
   waiting_neck_depths_.clear();
@@ -302,8 +306,18 @@ std::optional<BodyFitResult> SkeletonTracker::BestHeading(
 
 ArticulatedPose SkeletonTracker::Predicted(ArticulatedPose pose) const {
   if (has_previous_)
-    pose.root_translation += pose_.root_translation - previous_pose_.root_translation;
+    pose.root_translation +=
+        gap_ratio_ * (pose_.root_translation - previous_pose_.root_translation);
   return pose;
+}
+
+void SkeletonTracker::AdoptPose(const ArticulatedPose& pose, std::optional<double> timestamp_s,
+                                bool restart) {
+  previous_pose_ = restart ? pose : pose_;
+  previous_time_s_ = restart ? std::nullopt : pose_time_s_;
+  pose_ = pose;
+  pose_time_s_ = timestamp_s;
+  has_previous_ = !restart;
 }
 
 BodyFitResult SkeletonTracker::FitFromPrediction(const ArticulatedPose& start,
@@ -470,8 +484,13 @@ void SkeletonTracker::CollectCrotchHeight(const BodyFitResult& fit, const Person
 
 TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
                                         const std::optional<Eigen::Isometry3d>& world_from_sensor,
-                                        const std::optional<Eigen::Vector3d>& world_up) {
+                                        const std::optional<Eigen::Vector3d>& world_up,
+                                        std::optional<double> timestamp_s) {
   TrackFrameResult out;
+  if (timestamp_s &&
+      (!std::isfinite(*timestamp_s) || (pose_time_s_ && *timestamp_s <= *pose_time_s_)))
+    timestamp_s.reset();
+  gap_ratio_ = GapRatio(timestamp_s, pose_time_s_, previous_time_s_, options_.max_gap_ratio);
   const bool tracking = state_ == TrackState::kTracking;
   const PersonBlob blob =
       detector_.Detect(depth, world_from_sensor, world_up,
@@ -533,8 +552,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
       c = std::move(p);
     }
     body_.emplace(c.shape);
-    pose_ = previous_pose_ = c.pose;
-    has_previous_ = false;
+    AdoptPose(c.pose, timestamp_s, true);
     centroid_ = c.fit.inlier_centroid;
     state_ = TrackState::kTracking;
     bad_frames_ = 0;
@@ -563,8 +581,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
     }
     state_ = TrackState::kTracking;
     bad_frames_ = 0;
-    has_previous_ = false;
-    pose_ = previous_pose_ = r->pose;
+    AdoptPose(r->pose, timestamp_s, true);
     centroid_ = r->inlier_centroid;
     out.recovered = out.good_fit = true;
     out.inlier_share = r->inlier_share;
@@ -575,7 +592,8 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
   }
 
   const ArticulatedPose start = Predicted(pose_);
-  KeepPointsNearBody(*body_, body_->Pose(start), options_.keep_near_model_m, &obs);
+  KeepPointsNearBody(*body_, body_->Pose(start),
+                     options_.keep_near_model_m * std::max(1.0, gap_ratio_), &obs);
   out.points = static_cast<int>(obs.points.size());
   BodyFitResult fit = FitFromPrediction(start, blob, obs);
   fit = CheckFront(std::move(fit), blob, obs);
@@ -592,9 +610,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
   } else {
     bad_frames_ = 0;
   }
-  previous_pose_ = pose_;
-  pose_ = fit.pose;
-  has_previous_ = true;
+  AdoptPose(fit.pose, timestamp_s, false);
   if (out.good_fit) {
     if (use_static_scene)
       static_scene_.Learn(blob, detector_.rays(), *world_from_sensor, *body_, fit.posed);

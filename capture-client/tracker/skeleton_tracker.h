@@ -66,6 +66,7 @@
 #include "capture-client/tracker/body_fit.h"
 #include "capture-client/tracker/crotch_height.h"
 #include "capture-client/tracker/extremity_pose.h"
+#include "capture-client/tracker/gap_ratio.h"
 #include "capture-client/tracker/geodesic_extremities.h"
 #include "capture-client/tracker/head_size.h"
 #include "capture-client/tracker/heading.h"
@@ -100,8 +101,17 @@ struct SkeletonTrackerOptions {
   double limb_search_trigger = 0.005;
   double limb_search_gain = 0.1;
   // While tracking, data points farther than this from the predicted body are not the
-  // person's (metres, > 0; larger than a limb moves in one frame).
+  // person's (metres, > 0; larger than a limb moves in one frame interval; scaled by the
+  // prediction's gap ratio below where that is above 1).
   double keep_near_model_m = 0.4;
+  // The prediction in time: given each frame's timestamp (Track's timestamp_s), the last root
+  // displacement is carried on scaled by the gap ratio (gap_ratio.h), at most max_gap_ratio
+  // (>= 1): a live sensor drops frames when its queue overflows or the colour and depth
+  // streams part (openni_source.cc), and a frame without a person in between leaves a gap too.
+  // Without timestamps the frames count as evenly spaced. The other frame counts of these
+  // options (lost_after_frames, the front check's, the cool-downs, the static scene's) stay
+  // counts of frames.
+  double max_gap_ratio = 4;
   // The static scene learned while tracking (static_scene_voxels.h), its points dropped before the
   // fit; used only on frames whose sensor pose is given (Track's world_from_sensor).
   StaticSceneOptions static_scene;
@@ -269,10 +279,13 @@ class SkeletonTracker {
                   const SkeletonTrackerOptions& options = {});
 
   // One depth frame (the camera's size: CHECK). world_from_sensor and world_up: when known
-  // (they give the floor's up direction for a tilted or moving sensor).
+  // (they give the floor's up direction for a tilted or moving sensor). timestamp_s: the
+  // frame's time in seconds, when known (the prediction in time, max_gap_ratio above); a time
+  // that does not increase counts as unknown.
   TrackFrameResult Track(const ImageDepthMm& depth,
                          const std::optional<Eigen::Isometry3d>& world_from_sensor = std::nullopt,
-                         const std::optional<Eigen::Vector3d>& world_up = std::nullopt);
+                         const std::optional<Eigen::Vector3d>& world_up = std::nullopt,
+                         std::optional<double> timestamp_s = std::nullopt);
 
   TrackState state() const { return state_; }
   // The calibration, once calibrated.
@@ -309,8 +322,12 @@ class SkeletonTracker {
                                            const std::vector<Eigen::Vector3d>& headings,
                                            const GeodesicExtremities* extremities = nullptr,
                                            bool* from_extremities = nullptr) const;
-  // `pose` moved on by the track's last root displacement (the prediction for this frame).
+  // `pose` moved on by the track's last root displacement times the frame's gap ratio
+  // (gap_ratio_; the prediction for this frame).
   ArticulatedPose Predicted(ArticulatedPose pose) const;
+  // A new pose of the track at timestamp_s: the last one becomes the previous (a start or a
+  // recovery, restart, has none).
+  void AdoptPose(const ArticulatedPose& pose, std::optional<double> timestamp_s, bool restart);
   // A tracked frame's fit from the predicted pose `start`: its own fit and the turned starts'
   // (the cheaper kept), limbs uncrossed, limb recheck_limb_ re-checked, as the options ask.
   BodyFitResult FitFromPrediction(const ArticulatedPose& start, const PersonBlob& blob,
@@ -336,6 +353,9 @@ class SkeletonTracker {
   std::optional<ArticulatedBody> body_;
   ArticulatedPose pose_, previous_pose_;
   bool has_previous_ = false;
+  // The times of pose_ and previous_pose_, when known; this frame's gap ratio.
+  std::optional<double> pose_time_s_, previous_time_s_;
+  double gap_ratio_ = 1;
   Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
   int bad_frames_ = 0;
   int uncalibrated_frames_ = 0;

@@ -59,9 +59,9 @@ Expected<std::optional<Skeleton>> TrackerSkeletonSource::Track(int64_t index,
                                     ", the depth camera's is " + std::to_string(cam.width) + "x" +
                                     std::to_string(cam.height));
   const TrackState before = tracker_->state();
-  const TrackFrameResult r =
-      tracker_->Track(frame.depth, pose.world_from_sensor,
-                      pose.world_from_sensor ? pose.world_up : std::optional<Eigen::Vector3d>());
+  const TrackFrameResult r = tracker_->Track(
+      frame.depth, pose.world_from_sensor,
+      pose.world_from_sensor ? pose.world_up : std::optional<Eigen::Vector3d>(), frame.timestamp_s);
   ++stats_.frames;
   stats_.posed += pose.world_from_sensor.has_value();
   ++stats_.detect[static_cast<int>(r.detect)];

@@ -1,9 +1,10 @@
 #pragma once
 // The depth tracker as the recorder's skeleton source (record/clip_recorder.h,
 // RecordOptions::frame_skeletons): one SkeletonTracker per recording, fed every source
-// frame's depth in order, with the recorder's pose hint (the source's pose, or SLAM's
-// prediction for a sensor without poses) and world up when known: the tracker's static scene
-// and floor need them for a moving sensor. Counts what happened, for the recording's summary.
+// frame's depth in order, with its timestamp (the tracker's prediction spans a dropped frame's
+// gap), the recorder's pose hint (the source's pose, or SLAM's prediction for a sensor without
+// poses) and world up when known: the tracker's static scene and floor need them for a moving
+// sensor. Counts what happened, for the recording's summary.
 
 #include <array>
 #include <memory>

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <random>
 #include <sstream>
 
 #include "capture-client/slam/rgbd_slam.h"
@@ -34,6 +35,24 @@ constexpr double kNearMaxShiftM = 1.2;
 // SLAM's depth noise at 1 m for rendered frames, as the synthetic source declares it
 // (synthetic_source.cc: the Kinect-like noise model's, doubled for keypoints on depth edges).
 constexpr double kSlamDepthSigma1mM = 0.003;
+
+const std::string kVariants = "normal, fast, near, drops";
+bool IsVariant(const std::string& v) {
+  return v == "normal" || v == "fast" || v == "near" || v == "drops";
+}
+
+// The drops variant: after each frame seen, the frames dropped before the next, 0-3 with these
+// probabilities (a mean of 0.6 dropped: 1.6 frame intervals between the frames seen).
+constexpr std::array<double, 4> kDropProbabilities = {0.6, 0.25, 0.1, 0.05};
+
+// The frames dropped after a frame seen, drawn from rng.
+int DroppedAfter(std::mt19937_64* rng) {
+  const double u = std::uniform_real_distribution<double>(0, 1)(*rng);
+  double sum = 0;
+  for (int k = 0; k + 1 < static_cast<int>(kDropProbabilities.size()); ++k)
+    if (u < (sum += kDropProbabilities[k])) return k;
+  return static_cast<int>(kDropProbabilities.size()) - 1;
+}
 
 constexpr int kCaseCount = 5;
 const char* kCases[kCaseCount] = {"back_facing", "arm_in_front", "fast_motion", "partly_outside",
@@ -101,6 +120,8 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
   render.depth_noise = o.depth_noise;
   const int step = variant == "fast" ? 2 : 1;
   const bool near = variant == "near";
+  std::optional<std::mt19937_64> drops;
+  if (variant == "drops") drops.emplace(scene.seed() * 0x9E3779B97F4A7C15ull + 1);
   const PinholeCamera& camera = scene.sensor_camera();
 
   TrackerEvalRow row;
@@ -115,7 +136,8 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
   std::optional<Skeleton> previous_truth, previous_world;
   std::optional<capture::slam::RgbdSlam> slam;  // with o.slam_poses, from the first frame
   capture::TrackState last = capture::TrackState::kWaitingForCalibration;
-  for (int f = 0; f < scene.frame_count(); f += step) {
+  int previous_f = -1;
+  for (int f = 0; f < scene.frame_count(); f += step + (drops ? DroppedAfter(&*drops) : 0)) {
     if (o.max_frames > 0 && row.frames >= o.max_frames) break;
     Eigen::Isometry3d world_from_sensor = scene.world_from_sensor(f);
     if (near) {
@@ -138,7 +160,8 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
     const double cpu0 = ProcessCpuMs();
     const auto t0 = std::chrono::steady_clock::now();
     const capture::TrackFrameResult r =
-        tracker.Track(view.depth, given, given ? std::optional(world_up) : std::nullopt);
+        tracker.Track(view.depth, given, given ? std::optional(world_up) : std::nullopt,
+                      o.timestamps ? std::optional(f / scene.frame_rate_hz()) : std::nullopt);
     const auto t1 = std::chrono::steady_clock::now();
     cpu.push_back(ProcessCpuMs() - cpu0);
     ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
@@ -169,7 +192,8 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
       confidence->Add(*r.skeleton, truth);
     }
     const auto hard = HardCases(
-        truth, previous_truth ? &*previous_truth : nullptr, step / scene.frame_rate_hz(), camera,
+        truth, previous_truth ? &*previous_truth : nullptr,
+        (f - previous_f) / scene.frame_rate_hz(), camera,
         previous_world ? HeadingErrorDeg(world, *previous_world, world_up) : std::nullopt);
     for (int k = 0; k < kCaseCount; ++k) {
       if (!hard[k]) continue;
@@ -179,6 +203,7 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
     }
     previous_truth = truth;
     previous_world = world;
+    previous_f = f;
   }
   row.tracked_rate = row.frames ? static_cast<double>(row.tracked) / row.frames : 0;
   row.mpjpe_cm = 100 * Mean(errors);
@@ -204,8 +229,7 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
 Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& o) {
   o.tracker.Check();
   for (const std::string& v : o.variants)
-    if (v != "normal" && v != "fast" && v != "near")
-      return MakeError("usage", "unknown variant '" + v + "' (normal, fast or near)");
+    if (!IsVariant(v)) return MakeError("usage", "unknown variant '" + v + "' (" + kVariants + ")");
   if (o.seeds.empty() || *std::min_element(o.seeds.begin(), o.seeds.end()) < 1)
     return MakeError("usage", "seeds: give at least one, each at least 1");
   TrackerEvalRun run;
@@ -365,7 +389,7 @@ std::set<std::string> TrackerFlags() {
   return {"scenario",     "variants",    "iterations",    "subsample",      "body",
           "limb-recheck", "turn-starts", "noise",         "seeds",          "json",
           "torso-depth",  "held-twists", "front-confirm", "uncross-return", "static-scene",
-          "sensor-pose",  "limb-jump"};
+          "sensor-pose",  "limb-jump",   "timestamps"};
 }
 
 namespace {
@@ -437,8 +461,8 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
     auto list = ParseList("variants", *text);
     if (!list.ok()) return list.error();
     for (const std::string& v : *list)
-      if (v != "normal" && v != "fast" && v != "near")
-        return MakeError("usage", "--variants: unknown variant '" + v + "' (normal, fast, near)");
+      if (!IsVariant(v))
+        return MakeError("usage", "--variants: unknown variant '" + v + "' (" + kVariants + ")");
     o.variants = *list;
   }
   if (auto text = cl.Get("iterations")) {
@@ -477,10 +501,11 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
     if (!value.ok()) return value.error();
     o.tracker.front_check_confirm_frames = *value;
   }
-  for (const auto& [flag, value] : {std::pair{"uncross-return", &o.tracker.uncross_returns_limb},
-                                    std::pair{"static-scene", &o.tracker.static_scene.enabled},
-                                    std::pair{"limb-jump", &o.tracker.turn_start_jump_check},
-                                    std::pair{"noise", &o.depth_noise}})
+  for (const auto& [flag, value] :
+       {std::pair{"uncross-return", &o.tracker.uncross_returns_limb},
+        std::pair{"static-scene", &o.tracker.static_scene.enabled},
+        std::pair{"limb-jump", &o.tracker.turn_start_jump_check},
+        std::pair{"timestamps", &o.timestamps}, std::pair{"noise", &o.depth_noise}})
     if (auto text = cl.Get(flag)) {
       auto on = ParseOnOff(flag, *text);
       if (!on.ok()) return on.error();

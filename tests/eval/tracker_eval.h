@@ -7,7 +7,8 @@
 //                        [--limb-recheck N] [--turn-starts DEG] [--held-twists N]
 //                        [--front-confirm N] [--uncross-return on|off]
 //                        [--static-scene on|off] [--limb-jump on|off] [--noise on|off]
-//                        [--sensor-pose truth|slam] [--seeds N[,N...]] [--json FILE]
+//                        [--sensor-pose truth|slam] [--timestamps on|off]
+//                        [--seeds N[,N...]] [--json FILE]
 //
 // --seeds: the scene's seeds, each a run of its own (default 1): the seed draws the depth
 // noise (and walk-handheld's hand shake), and a tracker fits every frame from the last one,
@@ -30,6 +31,9 @@
 // default on; it needs the sensor's pose).
 // --limb-jump on|off: a turned start's fit refused where a limb jumped from its data
 // (SkeletonTrackerOptions::turn_start_jump_check, limb_jump.h; default on).
+// --timestamps on|off: each frame's time given to the tracker (default on), which scales its
+// prediction by the gap since the last frame (SkeletonTrackerOptions::max_gap_ratio); off:
+// every frame taken as one interval after the last, as before timestamps were passed.
 // --sensor-pose truth|slam: the sensor pose (and the world's up) the tracker is given with each
 // frame: the scene's true one (default), or the one the recorder gives it for a sensor without
 // poses (clip_recorder.h's FramePoseHint): RGB-D SLAM's constant-velocity prediction for the
@@ -46,6 +50,10 @@
 //   near    the sensor moved forward along its optical axis (by at most 1.2 m) until the
 //           subject's waist is 1.8 m ahead: the subject is partly outside the image (shins
 //           and feet cut off, raised hands leave the top)
+//   drops   frames dropped unevenly, as a live sensor drops them when its queue overflows or
+//           its colour and depth streams part (openni_source.cc): after each frame seen, 0, 1,
+//           2 or 3 frames dropped with probabilities 0.6, 0.25, 0.1 and 0.05, drawn from the
+//           seed (1.6 frame intervals between the frames seen on average)
 // Figures per row: frames, tracked_rate (frames with a skeleton), mpjpe_cm (mean over the
 // tracked frames of the mean 16-joint error), p90_cm (90th percentile of the per-frame
 // errors), heading_deg (median over the tracked frames of the heading error, body_heading.h:
@@ -104,18 +112,20 @@ namespace reenact::eval {
 
 struct TrackerEvalOptions {
   std::vector<std::string> scenarios{"turn-and-kick", "walk-handheld"};
-  std::vector<std::string> variants{"normal"};                    // normal, fast, near
-  std::vector<int> iterations{8};                                 // each >= 1
-  std::vector<int> subsample{2};                                  // each >= 1
+  std::vector<std::string> variants{"normal"};  // normal, fast, near, drops
+  std::vector<int> iterations{8};               // each >= 1
+  std::vector<int> subsample{2};                // each >= 1
   // The skinned body for bvh: scenarios; empty: the procedural body.
   std::string body_path = "../shared/data/models/CesiumMan.glb";
   bool body_for_all = false;  // every scenario on body_path (set by --body), not only bvh:
   bool depth_noise = true;
   std::vector<int> seeds{1};  // each >= 1: the scene's seed, one run per seed
-  int max_frames = -1;  // frames per run at most (-1: all); for tests
+  int max_frames = -1;        // frames per run at most (-1: all); for tests
   // The sensor pose the tracker is given: the truth, or (--sensor-pose slam) the RGB-D SLAM's
   // prediction as the recorder gives it for a sensor without poses.
   bool slam_poses = false;
+  // Each frame's timestamp given to the tracker (SkeletonTrackerOptions::max_gap_ratio).
+  bool timestamps = true;
   capture::SkeletonTrackerOptions tracker;
 };
 
