@@ -9,6 +9,7 @@
 #include <numeric>
 #include <random>
 #include <sstream>
+#include <string_view>
 
 #include "capture-client/slam/rgbd_slam.h"
 #include "capture-client/synthetic/synthetic_scene.h"
@@ -36,9 +37,16 @@ constexpr double kNearMaxShiftM = 1.2;
 // (synthetic_source.cc: the Kinect-like noise model's, doubled for keypoints on depth edges).
 constexpr double kSlamDepthSigma1mM = 0.003;
 
-const std::string kVariants = "normal, fast, near, drops";
+// The variants (see the header), for checking and for naming them in a usage error.
+constexpr std::array<std::string_view, 4> kVariantNames = {"normal", "fast", "near", "drops"};
 bool IsVariant(const std::string& v) {
-  return v == "normal" || v == "fast" || v == "near" || v == "drops";
+  return std::ranges::find(kVariantNames, v) != kVariantNames.end();
+}
+std::string VariantList() {
+  std::string list;
+  for (const std::string_view name : kVariantNames)
+    list += (list.empty() ? "" : ", ") + std::string(name);
+  return list;
 }
 
 // The drops variant: after each frame seen, the frames dropped before the next, 0-3 with these
@@ -229,7 +237,8 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
 Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& o) {
   o.tracker.Check();
   for (const std::string& v : o.variants)
-    if (!IsVariant(v)) return MakeError("usage", "unknown variant '" + v + "' (" + kVariants + ")");
+    if (!IsVariant(v))
+      return MakeError("usage", "unknown variant '" + v + "' (" + VariantList() + ")");
   if (o.seeds.empty() || *std::min_element(o.seeds.begin(), o.seeds.end()) < 1)
     return MakeError("usage", "seeds: give at least one, each at least 1");
   TrackerEvalRun run;
@@ -462,7 +471,8 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
     if (!list.ok()) return list.error();
     for (const std::string& v : *list)
       if (!IsVariant(v))
-        return MakeError("usage", "--variants: unknown variant '" + v + "' (" + kVariants + ")");
+        return MakeError("usage",
+                         "--variants: unknown variant '" + v + "' (" + VariantList() + ")");
     o.variants = *list;
   }
   if (auto text = cl.Get("iterations")) {
