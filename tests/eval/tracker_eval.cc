@@ -119,7 +119,7 @@ struct CaseSum {
 Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std::string& variant,
                                 int iterations, int subsample, const TrackerEvalOptions& o,
                                 std::map<std::string, CaseSum>* cases, JointErrorTable* joints,
-                                ConfidenceErrorTable* confidence) {
+                                ConfidenceErrorTable* confidence, LimbVisibilityTable* limbs) {
   capture::SkeletonTrackerOptions to = o.tracker;
   to.fit.iterations = iterations;
   to.subsample = subsample;
@@ -198,6 +198,7 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
       if (const auto h = HeadingErrorDeg(*r.skeleton, truth, up)) headings.push_back(*h);
       joints->Add(*r.skeleton, truth);
       confidence->Add(*r.skeleton, truth);
+      limbs->Add(VisiblePartAreas(view.part_labels, truth, camera), *r.skeleton, truth);
     }
     const auto hard = HardCases(
         truth, previous_truth ? &*previous_truth : nullptr,
@@ -254,8 +255,9 @@ Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& o) {
             std::map<std::string, CaseSum> cases;
             JointErrorTable joints;
             ConfidenceErrorTable confidence;
-            auto row =
-                RunOne(*scene, variant, iterations, subsample, o, &cases, &joints, &confidence);
+            LimbVisibilityTable limbs;
+            auto row = RunOne(*scene, variant, iterations, subsample, o, &cases, &joints,
+                              &confidence, &limbs);
             if (!row.ok()) return row.error();
             run.rows.push_back(*row);
             const auto stats = joints.Stats();
@@ -265,6 +267,9 @@ Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& o) {
             const auto bins = confidence.Stats();
             for (int b = 0; b < kConfidenceBinCount; ++b)
               run.confidence.push_back({name, variant, iterations, subsample, seed, b, bins[b]});
+            const auto limb_stats = limbs.Stats();
+            for (int l = 0; l < kEvalLimbCount; ++l)
+              run.limbs.push_back({name, variant, iterations, subsample, seed, l, limb_stats[l]});
             for (const char* name_case : kCases) {
               const auto it = cases.find(name_case);
               if (it == cases.end()) continue;
@@ -372,6 +377,17 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
         .Add("share", c.stats.share)
         .Add("mean_cm", c.stats.mean_cm)
         .Add("gross_share", c.stats.gross_share);
+    report.rows.push_back(std::move(row));
+  }
+  for (const TrackerLimbRow& l : run.limbs) {
+    proto::ReportRow row = SettingRow("limbs", l);
+    row.Add("limb", std::string(EvalLimbName(l.limb)))
+        .Add("in_view_n", static_cast<long long>(l.stats.in_view))
+        .Add("hidden_n", static_cast<long long>(l.stats.hidden))
+        .Add("in_view_end_cm", l.stats.in_view_end_cm)
+        .Add("hidden_end_cm", l.stats.hidden_end_cm)
+        .Add("in_view_middle_cm", l.stats.in_view_middle_cm)
+        .Add("hidden_middle_cm", l.stats.hidden_middle_cm);
     report.rows.push_back(std::move(row));
   }
   const std::vector<TrackerSeedSummary> seeds = SummariseSeeds(run.rows);

@@ -86,7 +86,12 @@
 // elsewhere than the tracker's model) and spread_cm (RMS of the error less that mean: the
 // tracking error proper). A fourth, "confidence", breaks every row's joint estimates down by
 // the confidence the tracker reported for them (confidence_error_table.h): their share, mean
-// error and share more than 10 cm off per confidence bin.
+// error and share more than 10 cm off per confidence bin. A fifth, "limbs", splits every
+// row's tracked frames, per limb, into those where the frame shows the limb and those where
+// it is hidden (by the body, or beyond the image's edge), by the ground truth's visible part
+// areas (limb_visibility_table.h), with the hand's (foot's) and the elbow's (knee's) mean
+// error over each: a limb far off while in view is the tracker's failure, one far off while
+// hidden a guess the data do not correct.
 // Bodies: the procedural scenarios play on the procedural body and bvh: scenarios on
 // --body (default ../shared/data/models/CesiumMan.glb); --body FILE.glb plays every scenario
 // on that skinned body (the procedural scenarios retargeted), --body procedural every
@@ -107,6 +112,7 @@
 #include "proto/report/report_table.h"
 #include "tests/eval/confidence_error_table.h"
 #include "tests/eval/joint_error_table.h"
+#include "tests/eval/limb_visibility_table.h"
 
 namespace reenact::eval {
 
@@ -163,6 +169,13 @@ struct TrackerConfidenceRow {
   ConfidenceBinStats stats;
 };
 
+struct TrackerLimbRow {
+  std::string scenario, variant;
+  int iterations = 0, subsample = 0, seed = 1;
+  int limb = 0;  // EvalLimbName's index
+  LimbVisibilityStats stats;
+};
+
 // One setting (scenario, variant, iterations, subsample) over its seeds: the mean, least and
 // largest of the rows' mpjpe_cm, and the means of p90_cm and tracked_rate.
 struct TrackerSeedSummary {
@@ -177,6 +190,7 @@ struct TrackerEvalRun {
   std::vector<TrackerCaseRow> cases;
   std::vector<TrackerJointRow> joints;           // kJointCount per row, in Joint order
   std::vector<TrackerConfidenceRow> confidence;  // kConfidenceBinCount per row, in bin order
+  std::vector<TrackerLimbRow> limbs;             // kEvalLimbCount per row, in limb order
 };
 
 // The rows' settings over their seeds, in the order each setting first appears.
@@ -191,9 +205,10 @@ Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& options);
 // calib_frame, losses, recoveries, ms_per_frame, cpu_ms_per_frame) and the table "cases"
 // (case, n, tracked_rate, mpjpe_cm) and the table "joints" (joint, n, mean_cm, bias_x_cm,
 // bias_y_cm, bias_z_cm, bias_cm, spread_cm) and the table "confidence" (confidence, n, share,
-// mean_cm, gross_share); with more than one seed, the table "seeds" (SummariseSeeds: scenario,
-// variant, iterations, subsample, seeds, mpjpe_cm, min_mpjpe_cm, max_mpjpe_cm, p90_cm,
-// tracked_rate).
+// mean_cm, gross_share) and the table "limbs" (limb, in_view_n, hidden_n, in_view_end_cm,
+// hidden_end_cm, in_view_middle_cm, hidden_middle_cm); with more than one seed, the table "seeds"
+// (SummariseSeeds: scenario, variant, iterations, subsample, seeds, mpjpe_cm, min_mpjpe_cm,
+// max_mpjpe_cm, p90_cm, tracked_rate).
 proto::Report TrackerReport(const TrackerEvalRun& run);
 
 struct TrackerCommand {

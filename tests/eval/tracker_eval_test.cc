@@ -306,6 +306,40 @@ TEST(TrackerEval, ShortRunTracksEveryFrameAndWritesTheReport) {
     EXPECT_NEAR(error_cm / n, run->rows[r].mpjpe_cm, 1e-9);
   }
   EXPECT_NE(text.str().find("\"confidence\": \"0.75-1\""), std::string::npos);
+  // The limbs table: every tracked frame of a row in view or hidden for each limb. In these
+  // frames the subject faces the sensor with the arms out and then coming down, and stands in
+  // the image (normal): nothing hides a limb.
+  ASSERT_EQ(run->limbs.size(), 2u * kEvalLimbCount);
+  for (size_t r = 0; r < run->rows.size(); ++r)
+    for (int l = 0; l < kEvalLimbCount; ++l) {
+      const TrackerLimbRow& limb = run->limbs[r * kEvalLimbCount + l];
+      EXPECT_EQ(limb.limb, l);
+      EXPECT_EQ(limb.stats.in_view + limb.stats.hidden, run->rows[r].tracked);
+      if (limb.variant == "normal") {
+        EXPECT_EQ(limb.stats.hidden, 0) << EvalLimbName(l);
+      }
+    }
+  EXPECT_NE(text.str().find("\"limb\": \"l_arm\""), std::string::npos);
+}
+
+TEST(TrackerEval, TheFarArmIsHiddenWhereTheTurnPassesSideOn) {
+  // turn-and-kick's shoulders turn to h(t) = 360 (3 s^2 - 2 s^3) + 12 sin(2 pi s) degrees,
+  // s = (t - 1.2 s) / 2.8 s (TurningFramesAreTheTurnsConstruction), towards the subject's left
+  // (root_yaw grows), so its left side turns away from the sensor: h is within 30 degrees of
+  // side-on on the 12 frames 56-67 (h(55) = 59, h(67) = 120), where the trunk hides the left
+  // arm. The right arm, the near one, stays in view.
+  TrackerEvalOptions o;
+  o.scenarios = {"turn-and-kick"};
+  o.max_frames = 75;
+  const auto run = RunTrackerEval(o);
+  ASSERT_TRUE(run.ok()) << run.error().message;
+  ASSERT_EQ(run->limbs.size(), static_cast<size_t>(kEvalLimbCount));
+  const LimbVisibilityStats& left = run->limbs[0].stats;
+  const LimbVisibilityStats& right = run->limbs[1].stats;
+  EXPECT_EQ(left.in_view + left.hidden, run->rows[0].tracked);
+  EXPECT_GE(left.hidden, 3);
+  EXPECT_LE(left.hidden, 12);
+  EXPECT_EQ(right.hidden, 0);
 }
 
 TEST(TrackerEval, TheDropsVariantSeesFramesUnevenlyAndTracksThem) {
