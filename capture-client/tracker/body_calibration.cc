@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "capture-client/tracker/torso_depth.h"
 #include "common/error/check.h"
 #include "common/estimate/median.h"
 
@@ -140,6 +141,17 @@ void RefitRadii(const ArticulatedBody& body, const PosedBody3& posed,
   refit({13, 15}, &shape->shin_radius, prior.shin_radius);
 }
 
+// The trunk's half breadth measured on the calibration frame (MeasureTrunkBreadth), within
+// [0.6, 1.5] of the prior's; unchanged where the abdomen shows too little.
+void RefitTrunkBreadth(const ArticulatedBody& body, const PosedBody3& posed, const PersonBlob& blob,
+                       const PinholeCamera& camera, BodyShape* shape, const BodyShape& prior) {
+  const std::optional<double> half_breadth = MeasureTrunkBreadth(body, posed, blob, camera);
+  if (!half_breadth) return;
+  const double prior_half_breadth = prior.torso_radius + prior.torso_half_spread;
+  *shape = WithTorsoBreadth(
+      *shape, std::clamp(*half_breadth, 0.6 * prior_half_breadth, 1.5 * prior_half_breadth));
+}
+
 // `scaled` with its two spine lengths scaled together to give `original`'s standing height.
 BodyShape SpineKeepingHeight(BodyShape scaled, const BodyShape& original) {
   const double spine = scaled.lower_spine + scaled.upper_spine;
@@ -227,6 +239,8 @@ BodyCalibration CalibrateBody(const PersonBlob& blob, const PinholeCamera& camer
     pose = c.fit.pose;
     if (round == options.refine_rounds) break;
     RefitRadii(body, c.fit.posed, obs.points, options.fit.outlier_m, &shape, prior);
+    if (options.fit_trunk_breadth)
+      RefitTrunkBreadth(body, c.fit.posed, blob, camera, &shape, prior);
   }
   if (options.fit_lengths) {
     const ShapeFitResult sf = FitBodyShape(shape, pose, obs, h, options.fit, options.shape);
@@ -234,6 +248,7 @@ BodyCalibration CalibrateBody(const PersonBlob& blob, const PinholeCamera& camer
     const ArticulatedBody body(shape);
     BodyFitResult fit = FitBody(body, sf.pose, obs, options.fit);
     RefitRadii(body, fit.posed, obs.points, options.fit.outlier_m, &shape, prior);
+    if (options.fit_trunk_breadth) RefitTrunkBreadth(body, fit.posed, blob, camera, &shape, prior);
     c.fit = FitBody(ArticulatedBody(shape), fit.pose, obs, options.fit);
     pose = c.fit.pose;
   }

@@ -14,8 +14,10 @@
 //  4. Pose: arms out sideways, placed at the legs' lateral position, torso_radius behind the
 //     torso's front surface; refined by the model fit (body_fit.h), then each capsule radius
 //     re-estimated as the median distance to its axis of the points nearest to it (middle
-//     70% of the axis), within [0.6, 1.5] of the proportional radius, and fitted again
-//     (refine_rounds times).
+//     70% of the axis), within [0.6, 1.5] of the proportional radius, and the trunk's half
+//     breadth (fit_trunk_breadth) as the abdomen's silhouette half width facing the sensor
+//     (torso_depth.h's MeasureTrunkBreadth), within [0.6, 1.5] of the proportional one, the
+//     half depth kept; then fitted again (refine_rounds times).
 //  5. Lengths (fit_lengths): the free lengths of shape_fit.h (hips, spine, shoulder drop,
 //     legs, head; the arm chain stays at step 3's span estimate) fitted together with the
 //     pose, the proportional shape of step 3 as their prior and the standing height as a
@@ -40,6 +42,10 @@ struct CalibrationOptions {
   double min_span_ratio = 0.75;    // arm span / height at least, > 0
   double max_offset_ratio = 0.08;  // span middle vs legs, / height, > 0
   int refine_rounds = 2;           // radius re-estimation rounds, >= 0
+  // Step 4's trunk breadth, measured instead of the proportional one. The proportions made
+  // CesiumMan's trunk 26 cm broad (its mesh: 21-23 cm at the abdomen); measured: B 8.906 ->
+  // 8.032 cm (docs/measurements.md, session 46).
+  bool fit_trunk_breadth = true;
   BodyFitOptions fit{.iterations = 20};
   // Step 5: fit the segment lengths with the pose (shape_fit.h), then the radii and the pose
   // once more.

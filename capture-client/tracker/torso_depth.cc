@@ -148,6 +148,29 @@ BodyShape WithTorsoDepth(const BodyShape& shape, double half_depth_m, double min
   return s;
 }
 
+std::optional<double> MeasureTrunkBreadth(const ArticulatedBody& body, const PosedBody3& posed,
+                                          const PersonBlob& blob, const PinholeCamera& camera,
+                                          double max_facing_deg, const TorsoDepthOptions& options) {
+  REENACT_CHECK(max_facing_deg >= 0 && max_facing_deg <= 90, "max_facing_deg in [0, 90]");
+  TorsoDepthOptions every_view = options;
+  every_view.max_side_deg = 90;
+  const double min_sin = std::cos(max_facing_deg * std::numbers::pi / 180);
+  for (const TrunkWidth& w : MeasureTrunkWidths(body, posed, blob, camera, every_view))
+    if (w.segment == BodySegment::kLowerSpine && w.sin_from_side >= min_sin - 1e-12 &&
+        w.half_width_m > 0 && std::isfinite(w.half_width_m))
+      return w.half_width_m;
+  return std::nullopt;
+}
+
+BodyShape WithTorsoBreadth(const BodyShape& shape, double half_breadth_m) {
+  REENACT_CHECK(half_breadth_m > 0 && std::isfinite(half_breadth_m),
+                "half breadth must be positive");
+  BodyShape s = shape;
+  s.torso_radius = std::min(shape.torso_radius, half_breadth_m);
+  s.torso_half_spread = half_breadth_m - s.torso_radius;
+  return s;
+}
+
 TorsoDepthCollector::TorsoDepthCollector(const TorsoDepthOptions& options) : options_(options) {
   options_.Check();
 }

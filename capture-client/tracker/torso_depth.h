@@ -1,5 +1,6 @@
 #pragma once
-// The trunk's depth (front to back) measured from side views while tracking (issue 8). The
+// The trunk's depth (front to back) measured from side views while tracking, and its breadth
+// from the calibration pose (issue 8; MeasureTrunkBreadth below). The
 // calibration pose faces the sensor: it shows the trunk's breadth, but its depth only through
 // the curvature of the front surface, and the calibrated trunk comes out 0.53-0.56 times as
 // deep as broad on both synthetic bodies, against 0.65-0.7 (procedural) and 0.76 (CesiumMan)
@@ -83,6 +84,30 @@ std::vector<TrunkWidth> MeasureTrunkWidths(const ArticulatedBody& body, const Po
 // = half_depth_m, torso_half_spread = the old radius + spread - half_depth_m, the half depth
 // first kept within [min_depth_ratio, 1] of the half breadth. half_depth_m > 0 (CHECK).
 BodyShape WithTorsoDepth(const BodyShape& shape, double half_depth_m, double min_depth_ratio = 0.4);
+
+// The trunk's breadth from the calibration pose. The calibration frame faces the sensor with the
+// arms held out above the abdomen and the legs below it, so the abdomen (the lower spine
+// segment, waist -> torso joint) shows its whole breadth: seen facing (|sin theta| = 1),
+// w = r + s. The chest does not: its slices run into the arms or, above them, the neck; nor
+// does the pelvis once its capsules are as narrow as the body, since its edges then meet the
+// thighs'. One breadth serves the three segments (BodyShape has one). The shape's prior,
+// average-adult proportions, made CesiumMan's trunk 25.8-26.5 cm broad against its mesh's
+// 20.5-22.7 cm at the abdomen, and its capsules took a hanging arm's points
+// (docs/measurements.md).
+// Returns the lower spine's half width (MeasureTrunkWidths with every view allowed), metres,
+// when the segment is seen within max_facing_deg of facing the sensor (|sin theta| at least
+// cos max_facing_deg) and shows at least options.min_slices slices whose edges are free;
+// otherwise nothing (also for every degenerate input MeasureTrunkWidths rejects).
+// 0 <= max_facing_deg <= 90 (CHECK).
+std::optional<double> MeasureTrunkBreadth(const ArticulatedBody& body, const PosedBody3& posed,
+                                          const PersonBlob& blob, const PinholeCamera& camera,
+                                          double max_facing_deg = 30,
+                                          const TorsoDepthOptions& options = {});
+
+// The shape with the trunk's half breadth set to half_breadth_m and its half depth kept:
+// torso_half_spread = half_breadth_m - torso_radius; a breadth under the depth gives a round
+// trunk of that breadth (torso_radius = half_breadth_m, spread 0). half_breadth_m > 0 (CHECK).
+BodyShape WithTorsoBreadth(const BodyShape& shape, double half_breadth_m);
 
 // Collects the side views of a track (above) until it has the half depth.
 class TorsoDepthCollector {

@@ -414,7 +414,7 @@ std::set<std::string> TrackerFlags() {
   return {"scenario",     "variants",    "iterations",    "subsample",      "body",
           "limb-recheck", "turn-starts", "noise",         "seeds",          "json",
           "torso-depth",  "held-twists", "front-confirm", "uncross-return", "static-scene",
-          "sensor-pose",  "limb-jump",   "timestamps"};
+          "sensor-pose",  "limb-jump",   "timestamps",    "trunk-breadth"};
 }
 
 namespace {
@@ -531,6 +531,7 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
        {std::pair{"uncross-return", &o.tracker.uncross_returns_limb},
         std::pair{"static-scene", &o.tracker.static_scene.enabled},
         std::pair{"limb-jump", &o.tracker.turn_start_jump_check},
+        std::pair{"trunk-breadth", &o.tracker.calibration.fit_trunk_breadth},
         std::pair{"timestamps", &o.timestamps}, std::pair{"noise", &o.depth_noise}})
     if (auto text = cl.Get(flag)) {
       auto on = ParseOnOff(flag, *text);

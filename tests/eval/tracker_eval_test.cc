@@ -91,6 +91,8 @@ TEST(TrackerCli, Flags) {
   EXPECT_TRUE(Parse({"--limb-jump", "on"})->options.tracker.turn_start_jump_check);
   EXPECT_FALSE(Parse({"--timestamps", "off"})->options.timestamps);
   EXPECT_TRUE(Parse({"--timestamps", "on"})->options.timestamps);
+  EXPECT_FALSE(Parse({"--trunk-breadth", "off"})->options.tracker.calibration.fit_trunk_breadth);
+  EXPECT_TRUE(Parse({"--trunk-breadth", "on"})->options.tracker.calibration.fit_trunk_breadth);
   EXPECT_EQ(Parse({"--variants", "drops,normal"})->options.variants,
             (std::vector<std::string>{"drops", "normal"}));
   EXPECT_TRUE(Parse({"--sensor-pose", "slam"})->options.slam_poses);
@@ -125,6 +127,7 @@ TEST(TrackerCli, BadInputIsRefused) {
   ExpectUsage({"--iterations", "8,x"}, "--iterations");
   ExpectUsage({"--subsample", "2.5"}, "--subsample");
   ExpectUsage({"--noise", "maybe"}, "--noise must be on or off");
+  ExpectUsage({"--trunk-breadth", "yes"}, "--trunk-breadth must be on or off");
   ExpectUsage({"--torso-depth", "on"}, "--torso-depth must be off, calibrated or always");
   ExpectUsage({"--body", ""}, "--body");
   ExpectUsage({"--limb-recheck", "-1"}, "--limb-recheck");

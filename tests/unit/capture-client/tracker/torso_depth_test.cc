@@ -1,12 +1,14 @@
 // The trunk's depth from side views (torso_depth.h) on ray-cast bodies of known shape: a trunk
 // deeper than the tracked body's, seen side-on, turned and facing; the breadth kept when the
-// depth is set; the collector's rule; and degenerate views.
+// depth is set; the collector's rule; and degenerate views. The trunk's breadth from the
+// calibration pose's facing view, and the depth kept when the breadth is set.
 #include "capture-client/tracker/torso_depth.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "capture-client/tracker/heading.h"
@@ -177,17 +179,22 @@ TEST(TorsoDepth, DegenerateViewsGiveNoWidthAndNoNan) {
                CheckError);
 }
 
+// Nothing but the trunk's cross-section differs between a shape and one built from it: the
+// bones and the other radii.
+void ExpectOnlyTheTrunkChanged(const BodyShape& changed, const BodyShape& original) {
+  BodyShape back = changed;
+  back.torso_radius = original.torso_radius;
+  back.torso_half_spread = original.torso_half_spread;
+  EXPECT_EQ(back.PartLengths(), original.PartLengths());
+  EXPECT_EQ(back.PartRadii(), original.PartRadii());
+}
+
 TEST(TorsoDepth, SettingTheDepthKeepsTheBreadth) {
   const BodyShape shallow = ShallowShape();
   const BodyShape deep = WithTorsoDepth(shallow, 0.1);
   EXPECT_DOUBLE_EQ(deep.torso_radius, 0.1);
   EXPECT_NEAR(deep.torso_half_spread, 0.06, 1e-12);
-  // Nothing else changes: the bones and the other radii.
-  BodyShape back = deep;
-  back.torso_radius = shallow.torso_radius;
-  back.torso_half_spread = shallow.torso_half_spread;
-  EXPECT_EQ(back.PartLengths(), shallow.PartLengths());
-  EXPECT_EQ(back.PartRadii(), shallow.PartRadii());
+  ExpectOnlyTheTrunkChanged(deep, shallow);
   // Deeper than broad: one round capsule; shallower than min_depth_ratio: kept at it.
   EXPECT_DOUBLE_EQ(WithTorsoDepth(shallow, 0.3).torso_radius, 0.16);
   EXPECT_DOUBLE_EQ(WithTorsoDepth(shallow, 0.3).torso_half_spread, 0.0);
@@ -207,6 +214,67 @@ TEST(TorsoDepth, OnlyViewsNearSideOnAreMeasured) {
         MeasureTrunkWidths(tracked, tracked.Pose(pose), SceneBlob(Figure(truth, pose)), kCamera);
     EXPECT_EQ(Find(widths, BodySegment::kLowerSpine) != nullptr, turn < 30) << turn;
   }
+}
+
+// A tracked body whose trunk is broader than the truth's (36 cm against 32: the spread 0.08
+// against 0.06, as average proportions made CesiumMan's), same bones and depth.
+BodyShape BroadShape() {
+  BodyShape s = TrueShape();
+  s.torso_half_spread = 0.08;
+  return s;
+}
+
+// The breadth the broad body measures, posed as the truth turned turn_deg from side-on.
+std::optional<double> BreadthAt(double turn_deg, double max_facing_deg = 30) {
+  const double a = turn_deg * std::numbers::pi / 180;
+  const ArticulatedBody truth(TrueShape()), tracked(BroadShape());
+  const ArticulatedPose pose = Standing(truth, Eigen::Vector3d(std::cos(a), 0, -std::sin(a)));
+  return MeasureTrunkBreadth(tracked, tracked.Pose(pose), SceneBlob(Figure(truth, pose)), kCamera,
+                             max_facing_deg);
+}
+
+TEST(TorsoDepth, AFacingViewShowsTheAbdomensBreadth) {
+  // Facing the sensor, arms held out: the abdomen's silhouette is the truth's breadth, half
+  // of it r + s = 0.16 (w at |sin theta| = 1), within the grid's bound.
+  const auto facing = BreadthAt(90);
+  ASSERT_TRUE(facing);
+  EXPECT_NEAR(*facing, 0.16, kGridBound);
+  // 25 degrees off facing is still within the default 30: w = r + s sin 65 degrees.
+  const auto turned = BreadthAt(65);
+  ASSERT_TRUE(turned);
+  EXPECT_NEAR(*turned, 0.1 + 0.06 * std::sin(65 * std::numbers::pi / 180), kGridBound);
+  // Side-on, or 50 degrees off facing, the silhouette does not show the breadth: nothing.
+  EXPECT_FALSE(BreadthAt(0));
+  EXPECT_FALSE(BreadthAt(40));
+  // max_facing_deg 0 takes the facing view only.
+  EXPECT_TRUE(BreadthAt(90, 0));
+  EXPECT_FALSE(BreadthAt(65, 0));
+  EXPECT_THROW(BreadthAt(90, 91), CheckError);
+  EXPECT_THROW(BreadthAt(90, -1), CheckError);
+}
+
+TEST(TorsoDepth, DegenerateViewsGiveNoBreadth) {
+  const ArticulatedBody body(TrueShape());
+  const ArticulatedPose facing = Standing(body, Eigen::Vector3d(0, 0, -1));
+  EXPECT_FALSE(MeasureTrunkBreadth(body, body.Pose(facing), PersonBlob{}, kCamera));
+  // A model posed beside the points owns none of them.
+  ArticulatedPose away = facing;
+  away.root_translation.x() += 2;
+  EXPECT_FALSE(
+      MeasureTrunkBreadth(body, body.Pose(away), SceneBlob(Figure(body, facing)), kCamera));
+}
+
+TEST(TorsoDepth, SettingTheBreadthKeepsTheDepth) {
+  const BodyShape broad = BroadShape();
+  const BodyShape narrower = WithTorsoBreadth(broad, 0.16);
+  EXPECT_DOUBLE_EQ(narrower.torso_radius, 0.1);
+  EXPECT_NEAR(narrower.torso_half_spread, 0.06, 1e-12);
+  ExpectOnlyTheTrunkChanged(narrower, broad);
+  // Narrower than deep: one round capsule of that breadth.
+  EXPECT_DOUBLE_EQ(WithTorsoBreadth(broad, 0.07).torso_radius, 0.07);
+  EXPECT_DOUBLE_EQ(WithTorsoBreadth(broad, 0.07).torso_half_spread, 0.0);
+  EXPECT_THROW(WithTorsoBreadth(broad, 0.0), CheckError);
+  EXPECT_THROW(WithTorsoBreadth(broad, std::nan("")), CheckError);
 }
 
 TEST(TorsoDepth, TheCollectorGivesTheQuantileOfSideViewsOnce) {
