@@ -192,6 +192,18 @@ std::vector<BodyCapsule> BodyShape::Capsules() const {
   return c;
 }
 
+bool LimbEndsMoved(const PosedBody3& a, const PosedBody3& b, Limb limb, double max_move_m) {
+  constexpr Joint kLimbJoints[kLimbCount][2] = {{Joint::kLeftElbow, Joint::kLeftHand},
+                                                {Joint::kRightElbow, Joint::kRightHand},
+                                                {Joint::kLeftKnee, Joint::kLeftFoot},
+                                                {Joint::kRightKnee, Joint::kRightFoot}};
+  for (int l = 0; l < kLimbCount; ++l)
+    if (l != static_cast<int>(limb))
+      for (const Joint j : kLimbJoints[l])
+        if ((a.skeleton[j] - b.skeleton[j]).norm() > max_move_m) return true;
+  return false;
+}
+
 double ArmTrunkDepth(const ArticulatedBody& body, const PosedBody3& posed, Limb limb) {
   if (limb != Limb::kLeftArm && limb != Limb::kRightArm) return 0;
   const S upper = LimbUpper(limb), lower = LimbLower(limb);

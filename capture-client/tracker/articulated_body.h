@@ -186,6 +186,10 @@ class ArticulatedBody {
 // inside the pelvis by construction).
 double ArmTrunkDepth(const ArticulatedBody& body, const PosedBody3& posed, Limb limb);
 
+// Whether a limb other than `limb` has its elbow, hand, knee or foot more than max_move_m apart
+// in `a` and `b` (a fit that re-posed `limb` but moved another limb's data).
+bool LimbEndsMoved(const PosedBody3& a, const PosedBody3& b, Limb limb, double max_move_m);
+
 // A rotation about a unit axis by an angle (exp map of angle * axis); identity for a zero
 // vector.
 Eigen::Matrix3d ExpRotation(const Eigen::Vector3d& omega);

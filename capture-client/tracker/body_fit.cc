@@ -397,6 +397,10 @@ std::vector<int> NearestSegments(const ArticulatedBody& body, const PosedBody3& 
   return out;
 }
 
+double CostWithLostPoints(const BodyFitResult& fit, const BodyFitOptions& options) {
+  return fit.cost + fit.outlier_share * fit.points * HuberCost(options.outlier_m, options.huber_m);
+}
+
 BodyFitResult FitBody(const ArticulatedBody& body, const ArticulatedPose& start,
                       const BodyObservation& obs, const BodyFitOptions& options,
                       const JointLimits& limits) {

@@ -131,6 +131,10 @@ inline double HuberCost(double e, double delta) {
   return a <= delta ? 0.5 * e * e : delta * (a - 0.5 * delta);
 }
 
+// A fit's cost with each point it leaves beyond outlier_m counted at outlier_m's cost: such
+// points cost nothing in the fit, so a fit could cost less by losing a limb's points.
+double CostWithLostPoints(const BodyFitResult& fit, const BodyFitOptions& options);
+
 // Fits from `start`. An observation without points returns the start pose with zero support
 // (no step is taken).
 BodyFitResult FitBody(const ArticulatedBody& body, const ArticulatedPose& start,

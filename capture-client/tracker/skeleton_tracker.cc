@@ -47,6 +47,7 @@ void SkeletonTrackerOptions::Check() const {
                 "limb_search_trigger in [0, 1]");
   limb_search.Check();
   turn_start_jump.Check();
+  hanging_arm.Check();
   REENACT_CHECK(uncross_gain >= 0 && uncross_gain < 1, "uncross_gain in [0, 1)");
   REENACT_CHECK(limb_search_gain >= 0 && limb_search_gain < 1, "limb_search_gain in [0, 1)");
   REENACT_CHECK(limb_recheck_hypotheses >= 0 && limb_recheck_gain >= 0 && limb_recheck_gain < 1,
@@ -164,7 +165,9 @@ BodyFitResult SkeletonTracker::Refine(BodyFitResult fit, const BodyObservation& 
   if (SearchLimbs(*body_, obs, options_.fit, options_.limits, options_.limb_search, &pose) == 0)
     return fit;
   BodyFitResult again = FitBody(*body_, pose, obs, options_.fit, options_.limits);
-  if (CostWithLost(again) <= (1 - options_.limb_search_gain) * CostWithLost(fit)) return again;
+  if (CostWithLostPoints(again, options_.fit) <=
+      (1 - options_.limb_search_gain) * CostWithLostPoints(fit, options_.fit))
+    return again;
   return CheaperOf(std::move(fit), std::move(again));
 }
 
@@ -193,13 +196,10 @@ BodyFitResult SkeletonTracker::FitTurned(const ArticulatedPose& start, const Eig
                 obs);
 }
 
-double SkeletonTracker::CostWithLost(const BodyFitResult& fit) const {
-  return fit.cost +
-         fit.outlier_share * fit.points * HuberCost(options_.fit.outlier_m, options_.fit.huber_m);
-}
-
 BodyFitResult SkeletonTracker::CheaperOf(BodyFitResult fit, BodyFitResult other) const {
-  if (other.cost < fit.cost && CostWithLost(other) < CostWithLost(fit)) return other;
+  if (other.cost < fit.cost &&
+      CostWithLostPoints(other, options_.fit) < CostWithLostPoints(fit, options_.fit))
+    return other;
   return fit;
 }
 
@@ -209,15 +209,6 @@ BodyFitResult SkeletonTracker::RecheckLimb(BodyFitResult fit, const BodyObservat
       RankLimbHypotheses(*body_, obs, options_.fit, options_.limits, options_.limb_search, fit.pose,
                          limb, options_.limb_recheck_hypotheses);
   const double bound = (1 - options_.limb_recheck_gain) * fit.cost;
-  // The joints of the other limbs: a fit that moves them re-interprets their data.
-  constexpr Joint kLimbJoints[kLimbCount][2] = {{Joint::kLeftElbow, Joint::kLeftHand},
-                                                {Joint::kRightElbow, Joint::kRightHand},
-                                                {Joint::kLeftKnee, Joint::kLeftFoot},
-                                                {Joint::kRightKnee, Joint::kRightFoot}};
-  std::vector<Joint> others;
-  for (int l = 0; l < kLimbCount; ++l)
-    if (l != static_cast<int>(limb))
-      others.insert(others.end(), kLimbJoints[l], kLimbJoints[l] + 2);
   const double depth_bound =
       std::max(options_.limb_recheck_trunk_depth_m, ArmTrunkDepth(*body_, fit.posed, limb));
   std::optional<BodyFitResult> best;
@@ -226,11 +217,9 @@ BodyFitResult SkeletonTracker::RecheckLimb(BodyFitResult fit, const BodyObservat
   for (const ArticulatedPose& start : starts) {
     BodyFitResult r = FitBody(*body_, start, obs, fo, options_.limits);
     if (r.cost > bound || (best && r.cost >= best->cost)) continue;
-    bool kept = ArmTrunkDepth(*body_, r.posed, limb) <= depth_bound;
-    for (const Joint j : others)
-      kept &= (r.posed.skeleton[j] - fit.posed.skeleton[j]).norm() <=
-              options_.limb_recheck_max_other_move_m;
-    if (kept) best = std::move(r);
+    if (ArmTrunkDepth(*body_, r.posed, limb) <= depth_bound &&
+        !LimbEndsMoved(r.posed, fit.posed, limb, options_.limb_recheck_max_other_move_m))
+      best = std::move(r);
   }
   return best ? std::move(*best) : fit;
 }
@@ -344,7 +333,8 @@ BodyFitResult SkeletonTracker::FitFromPrediction(const ArticulatedPose& start,
   if (options_.uncross_limbs) fit = Uncross(std::move(fit), obs, start);
   if (options_.limb_recheck_hypotheses > 0)
     fit = RecheckLimb(std::move(fit), obs, static_cast<Limb>(recheck_limb_));
-  return fit;
+  return HangUnsupportedArms(*body_, std::move(fit), obs, options_.fit, options_.limits,
+                             options_.hanging_arm);
 }
 
 BodyFitResult SkeletonTracker::CheckFront(BodyFitResult fit, const PersonBlob& blob,

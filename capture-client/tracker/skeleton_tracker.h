@@ -26,13 +26,14 @@
 //    when it does not swing a limb in view out of its data, limb_jump.h).
 //    When many points are left unexplained, limbs are re-posed by a hypothesis search
 //    (limb_search.h) and fitted again; optionally, every frame one limb in turn is
-//    re-checked from its best few hypotheses, each fitted (limb_recheck_hypotheses, below). A fit
-//    is good when the data covers at least min_coverage of the model's silhouette within the
-//    image (BodyFitResult::coverage: a model that slid off the person covers little; 0.4-0.65 is
-//    usual, the body hiding its own parts; a subject partly beyond the image's edge keeps it) and
-//    at least good_inlier_share of the points lie within inlier_m of the model's surface.
-//    For a while after a start whose heading came from the silhouette, the fit is also tried
-//    turned around (front_check_*, below): front and back look alike to a standing body.
+//    re-checked from its best few hypotheses, each fitted (limb_recheck_hypotheses, below);
+//    optionally, an arm the data hardly show where the fit put it is also fitted from hanging at
+//    its shoulder (hanging_arm.h). A fit is good when the data covers at least min_coverage of the
+//    model's silhouette within the image (BodyFitResult::coverage: a model that slid off the person
+//    covers little; 0.4-0.65 is usual, the body hiding its own parts; a subject partly beyond the
+//    image's edge keeps it) and at least good_inlier_share of the points lie within inlier_m of the
+//    model's surface. For a while after a start whose heading came from the silhouette, the fit is
+//    also tried turned around (front_check_*, below): front and back look alike to a standing body.
 //    Unexplained points alone (an object touching the person) do not make a fit bad. Bone lengths
 //    are fixed by construction and joint limits are enforced on every step, so neither can be
 //    violated; a failed detection or a bad fit counts as a bad frame, and lost_after_frames bad
@@ -68,6 +69,7 @@
 #include "capture-client/tracker/extremity_pose.h"
 #include "capture-client/tracker/gap_ratio.h"
 #include "capture-client/tracker/geodesic_extremities.h"
+#include "capture-client/tracker/hanging_arm.h"
 #include "capture-client/tracker/head_size.h"
 #include "capture-client/tracker/heading.h"
 #include "capture-client/tracker/limb_jump.h"
@@ -151,6 +153,13 @@ struct SkeletonTrackerOptions {
   double limb_recheck_max_other_move_m = 0.1;
   double limb_recheck_trunk_depth_m = 0.0;
   int limb_recheck_iterations = 8;
+  // The hanging arm (hanging_arm.h): an arm the fit hardly supports is also fitted from
+  // hanging at its shoulder (hanging_arm.min_support 0: off). Off by default: on CesiumMan it
+  // brings set B from 8.03 to 7.81 cm, but its CMU walks stay level (10.16 -> 10.15), the
+  // procedural 131_01 walk moves 3.98 -> 4.00 (dropped frames, seed 1: 4.2 -> 5.7), and it
+  // costs 11 % more time per frame (docs/measurements.md, session 46); HangingArmOptions{}
+  // turns it on.
+  HangingArmOptions hanging_arm{.min_support = 0};
   // Turned starts: every tracked frame the fit is also started from the prediction turned about
   // the floor's up by -turn_start_deg and +turn_start_deg (degrees, [0, 90); 0 = off), each
   // start fitted and re-posed as the prediction's is, and the cheapest fit kept; cheaper also
@@ -298,11 +307,8 @@ class SkeletonTracker {
   Skeleton WithConfidence(const BodyFitResult& fit, const BodyObservation& obs, double inlier_m,
                           bool good) const;
   bool Good(const BodyFitResult& fit) const;
-  // The fit's cost with each point it leaves beyond outlier_m counted at outlier_m: points
-  // there cost nothing in the fit, so a fit could cost less by losing a limb's points.
-  double CostWithLost(const BodyFitResult& fit) const;
   // `other` when it costs less than `fit` both on the fit's cost and with the lost points
-  // counted (CostWithLost); else `fit`.
+  // counted (body_fit.h's CostWithLostPoints); else `fit`.
   BodyFitResult CheaperOf(BodyFitResult fit, BodyFitResult other) const;
   // The limb search (limb_search.h) where the fit lost points, and the fit from there (see
   // limb_search_trigger and limb_search_gain above).

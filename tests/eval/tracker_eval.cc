@@ -414,7 +414,7 @@ std::set<std::string> TrackerFlags() {
   return {"scenario",     "variants",    "iterations",    "subsample",      "body",
           "limb-recheck", "turn-starts", "noise",         "seeds",          "json",
           "torso-depth",  "held-twists", "front-confirm", "uncross-return", "static-scene",
-          "sensor-pose",  "limb-jump",   "timestamps",    "trunk-breadth"};
+          "sensor-pose",  "limb-jump",   "timestamps",    "trunk-breadth",  "hanging-arm"};
 }
 
 namespace {
@@ -521,6 +521,11 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
     auto value = ParseSetting("held-twists", *text, 36);
     if (!value.ok()) return value.error();
     o.tracker.limb_search.held_twists = *value;
+  }
+  if (auto text = cl.Get("hanging-arm")) {
+    auto on = ParseOnOff("hanging-arm", *text);
+    if (!on.ok()) return on.error();
+    o.tracker.hanging_arm.min_support = *on ? capture::HangingArmOptions{}.min_support : 0;
   }
   if (auto text = cl.Get("front-confirm")) {
     auto value = ParseSetting("front-confirm", *text, 30);

@@ -93,6 +93,8 @@ TEST(TrackerCli, Flags) {
   EXPECT_TRUE(Parse({"--timestamps", "on"})->options.timestamps);
   EXPECT_FALSE(Parse({"--trunk-breadth", "off"})->options.tracker.calibration.fit_trunk_breadth);
   EXPECT_TRUE(Parse({"--trunk-breadth", "on"})->options.tracker.calibration.fit_trunk_breadth);
+  EXPECT_EQ(Parse({"--hanging-arm", "off"})->options.tracker.hanging_arm.min_support, 0);
+  EXPECT_GT(Parse({"--hanging-arm", "on"})->options.tracker.hanging_arm.min_support, 0);
   EXPECT_EQ(Parse({"--variants", "drops,normal"})->options.variants,
             (std::vector<std::string>{"drops", "normal"}));
   EXPECT_TRUE(Parse({"--sensor-pose", "slam"})->options.slam_poses);
@@ -128,6 +130,7 @@ TEST(TrackerCli, BadInputIsRefused) {
   ExpectUsage({"--subsample", "2.5"}, "--subsample");
   ExpectUsage({"--noise", "maybe"}, "--noise must be on or off");
   ExpectUsage({"--trunk-breadth", "yes"}, "--trunk-breadth must be on or off");
+  ExpectUsage({"--hanging-arm", "1"}, "--hanging-arm must be on or off");
   ExpectUsage({"--torso-depth", "on"}, "--torso-depth must be off, calibrated or always");
   ExpectUsage({"--body", ""}, "--body");
   ExpectUsage({"--limb-recheck", "-1"}, "--limb-recheck");
