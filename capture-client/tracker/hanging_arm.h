@@ -15,7 +15,7 @@
 // Rule: where `fit` leaves an arm's two segments with less than min_support of their expected
 // support (BodyFitResult), the body is fitted from `fit`'s pose with that arm hanging (its upper
 // arm's local rotation about the body's left axis by -swing_rad, 0 and +swing_rad, i.e. along
-// the chest's down axis swung back, straight down and forward; the elbow bent by elbow_rad),
+// the chest's down axis swung forward, straight down and back; the elbow bent by elbow_rad),
 // each within the joint limits. The cheapest of those fits that moves no other limb's elbow,
 // hand, knee or foot by more than max_other_move_m (it would re-interpret their data) replaces
 // `fit` when it costs at most (1 - gain) times as much, each with the points it leaves beyond
