@@ -91,8 +91,8 @@ BodyShape WithTorsoDepth(const BodyShape& shape, double half_depth_m, double min
 // w = r + s. The chest does not: its slices run into the arms or, above them, the neck; nor
 // does the pelvis once its capsules are as narrow as the body, since its edges then meet the
 // thighs'. One breadth serves the three segments (BodyShape has one). The shape's prior,
-// average-adult proportions, made CesiumMan's trunk 25.8-26.5 cm broad against its mesh's
-// 20.5-22.7 cm at the abdomen, and its capsules took a hanging arm's points
+// average-adult proportions, made CesiumMan's trunk 24.6-27.3 cm broad (set B's 24 runs)
+// against its mesh's 20.5-22.7 cm at the abdomen, and its capsules took a hanging arm's points
 // (docs/measurements.md).
 // Returns the lower spine's half width (MeasureTrunkWidths with every view allowed), metres,
 // when the segment is seen within max_facing_deg of facing the sensor (|sin theta| at least
