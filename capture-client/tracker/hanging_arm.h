@@ -20,8 +20,11 @@
 // hand, knee or foot by more than max_other_move_m (it would re-interpret their data) replaces
 // `fit` when it costs at most (1 - gain) times as much, each with the points it leaves beyond
 // outlier_m counted (CostWithLostPoints, body_fit.h). The left arm is tried first, then the right
-// from the result. An arm hidden behind the body does not come down: hanging, it would stand
-// where the silhouette shows nothing, which the silhouette term charges.
+// from the result. An arm hidden behind the body mostly stays: hanging, it would stand where
+// the silhouette shows nothing, which the silhouette term charges. Not always: on the
+// procedural CMU 131_01 walk with dropped frames (seed 1, frame 194) a right hand raised
+// behind the head was pulled down with 3 of 91 expected points, 62.7 cm off two frames later
+// (docs/measurements.md, session 47).
 // Frames: the sensor frame (OpenCV axes, metres).
 
 #include <vector>
