@@ -114,6 +114,7 @@ void SkeletonTracker::Reset() {
   state_ = TrackState::kWaitingForCalibration;
   calibration_.reset();
   body_.reset();
+  last_observation_.reset();
   has_previous_ = false;
   pose_time_s_.reset();
   previous_time_s_.reset();
@@ -477,6 +478,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
                                         const std::optional<Eigen::Vector3d>& world_up,
                                         std::optional<double> timestamp_s) {
   TrackFrameResult out;
+  last_observation_.reset();
   if (timestamp_s &&
       (!std::isfinite(*timestamp_s) || (pose_time_s_ && *timestamp_s <= *pose_time_s_)))
     timestamp_s.reset();
@@ -578,6 +580,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
     out.outlier_share = r->outlier_share;
     out.skeleton = WithConfidence(*r, obs, options_.fit.inlier_m, true);
     out.state = state_;
+    last_observation_ = std::move(obs);
     return out;
   }
 
@@ -610,6 +613,18 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
   }
   out.skeleton = WithConfidence(fit, obs, options_.fit.inlier_m, out.good_fit);
   out.state = state_;
+  last_observation_ = std::move(obs);
+  return out;
+}
+
+std::optional<SkeletonTracker::OracleFit> SkeletonTracker::FitLastFrameFrom(
+    const Skeleton& start_in_sensor) const {
+  if (!body_ || !last_observation_) return std::nullopt;
+  const ArticulatedPose start = body_->PoseFromSkeleton(start_in_sensor);
+  OracleFit out;
+  out.posed = body_->Pose(start).skeleton;
+  out.fitted =
+      FitBody(*body_, start, *last_observation_, options_.fit, options_.limits).posed.skeleton;
   return out;
 }
 

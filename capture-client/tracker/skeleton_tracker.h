@@ -297,6 +297,20 @@ class SkeletonTracker {
                          std::optional<double> timestamp_s = std::nullopt);
 
   TrackState state() const { return state_; }
+
+  // The model's floor, an oracle for evaluation: what this body model reaches on the last
+  // frame from a start it could not know, such as the ground truth's skeleton. `posed`: the
+  // current body posed as near start_in_sensor as its shape allows
+  // (ArticulatedBody::PoseFromSkeleton: root from the pelvis and torso joints, limbs by their
+  // bone directions; every joint of the skeleton is read); `fitted`: that pose fitted to the
+  // last frame's observation as a tracked frame's own start is (FitBody with the options' fit
+  // and limits; no turned starts, searches or checks). The tracker's state is not touched.
+  // nullopt unless the last frame was tracked or recovered (a calibration frame, a frame
+  // without a person, or none yet).
+  struct OracleFit {
+    Skeleton posed, fitted;  // sensor frame
+  };
+  std::optional<OracleFit> FitLastFrameFrom(const Skeleton& start_in_sensor) const;
   // The calibration, once calibrated.
   const std::optional<BodyCalibration>& calibration() const { return calibration_; }
   // Forgets everything (a new subject).
@@ -357,6 +371,7 @@ class SkeletonTracker {
   TrackState state_ = TrackState::kWaitingForCalibration;
   std::optional<BodyCalibration> calibration_;
   std::optional<ArticulatedBody> body_;
+  std::optional<BodyObservation> last_observation_;  // of the last tracked or recovered frame
   ArticulatedPose pose_, previous_pose_;
   bool has_previous_ = false;
   // The times of pose_ and previous_pose_, when known; this frame's gap ratio.

@@ -138,7 +138,7 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
   row.iterations = iterations;
   row.subsample = subsample;
   row.seed = static_cast<int>(scene.seed());
-  std::vector<double> errors, aligned_errors, headings, ms, cpu;
+  std::vector<double> errors, aligned_errors, floor_posed_errors, floor_errors, headings, ms, cpu;
   std::optional<CalibrationAlignment> alignment;
   const Eigen::Vector3d world_up = scene.world_up();
   std::optional<Skeleton> previous_truth, previous_world;
@@ -194,6 +194,11 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
                         : std::nullopt;
       else if (alignment)
         aligned_errors.push_back(Mpjpe(alignment->Aligned(*r.skeleton), truth));
+      if (o.floor)
+        if (const auto oracle = tracker.FitLastFrameFrom(truth)) {
+          floor_posed_errors.push_back(Mpjpe(oracle->posed, truth));
+          floor_errors.push_back(Mpjpe(oracle->fitted, truth));
+        }
       const Eigen::Vector3d up = world_from_sensor.linear().transpose() * world_up;
       if (const auto h = HeadingErrorDeg(*r.skeleton, truth, up)) headings.push_back(*h);
       joints->Add(*r.skeleton, truth);
@@ -218,6 +223,10 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
   row.mpjpe_cm = 100 * Mean(errors);
   row.p90_cm = errors.empty() ? 0 : 100 * Percentile(errors, 0.9);
   if (!aligned_errors.empty()) row.aligned_mpjpe_cm = 100 * Mean(aligned_errors);
+  if (!floor_errors.empty()) {
+    row.floor_posed_mpjpe_cm = 100 * Mean(floor_posed_errors);
+    row.floor_mpjpe_cm = 100 * Mean(floor_errors);
+  }
   if (!headings.empty()) {
     row.heading_deg = Median(headings);
     row.reversed_rate = static_cast<double>(std::count_if(headings.begin(), headings.end(),
@@ -346,6 +355,9 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
         .Add("losses", static_cast<long long>(r.losses))
         .Add("recoveries", static_cast<long long>(r.recoveries));
     if (r.aligned_mpjpe_cm) row.Add("aligned_mpjpe_cm", *r.aligned_mpjpe_cm);
+    if (r.floor_mpjpe_cm)
+      row.Add("floor_posed_mpjpe_cm", *r.floor_posed_mpjpe_cm)
+          .Add("floor_mpjpe_cm", *r.floor_mpjpe_cm);
     row.Add("torso_depth_cm", r.torso_depth_cm).Add("torso_breadth_cm", r.torso_breadth_cm);
     row.Add("ms_per_frame", r.ms_per_frame).Add("cpu_ms_per_frame", r.cpu_ms_per_frame);
     report.rows.push_back(std::move(row));
@@ -414,7 +426,8 @@ std::set<std::string> TrackerFlags() {
   return {"scenario",     "variants",    "iterations",    "subsample",      "body",
           "limb-recheck", "turn-starts", "noise",         "seeds",          "json",
           "torso-depth",  "held-twists", "front-confirm", "uncross-return", "static-scene",
-          "sensor-pose",  "limb-jump",   "timestamps",    "trunk-breadth",  "hanging-arm"};
+          "sensor-pose",  "limb-jump",   "timestamps",    "trunk-breadth",  "hanging-arm",
+          "floor"};
 }
 
 namespace {
@@ -537,7 +550,8 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
         std::pair{"static-scene", &o.tracker.static_scene.enabled},
         std::pair{"limb-jump", &o.tracker.turn_start_jump_check},
         std::pair{"trunk-breadth", &o.tracker.calibration.fit_trunk_breadth},
-        std::pair{"timestamps", &o.timestamps}, std::pair{"noise", &o.depth_noise}})
+        std::pair{"timestamps", &o.timestamps}, std::pair{"noise", &o.depth_noise},
+        std::pair{"floor", &o.floor}})
     if (auto text = cl.Get(flag)) {
       auto on = ParseOnOff(flag, *text);
       if (!on.ok()) return on.error();

@@ -7,7 +7,7 @@
 //                        [--limb-recheck N] [--turn-starts DEG] [--held-twists N]
 //                        [--front-confirm N] [--uncross-return on|off]
 //                        [--static-scene on|off] [--limb-jump on|off] [--noise on|off]
-//                        [--sensor-pose truth|slam] [--timestamps on|off]
+//                        [--sensor-pose truth|slam] [--timestamps on|off] [--floor on|off]
 //                        [--seeds N[,N...]] [--json FILE]
 //
 // --seeds: the scene's seeds, each a run of its own (default 1): the seed draws the depth
@@ -41,6 +41,15 @@
 // tracking the frame's colour and depth with the rendered person mask (the recorder's is
 // segmented from the tracked skeleton), its world anchored at the first frame's true pose.
 // ms_per_frame stays the tracker's alone.
+// --floor on|off: the body model's floor beside the track (default off; one fit more a frame,
+// outside the timing): on every tracked frame but the track's start (its calibration), the
+// tracker's body as it is
+// then is posed from the ground truth's skeleton and fitted to that frame's observation
+// (SkeletonTracker::FitLastFrameFrom), as if the track had never lost anything.
+// floor_posed_mpjpe_cm is that pose's mean 16-joint error before the fit (the body's
+// proportions and its joint placement against the truth's rig), floor_mpjpe_cm after it (what
+// the data and this model give near the truth): a row near its floor is the model's, a row
+// far above it the tracking's. Means over those frames; written only with --floor on.
 // Per scenario, variant and speed setting (iterations x subsample), every sensor frame is
 // rendered with Kinect-like depth noise (on by default) and tracked, frames in order through
 // one tracker that is given the sensor pose and the world's up (as the synthetic source gives
@@ -132,6 +141,8 @@ struct TrackerEvalOptions {
   bool slam_poses = false;
   // Each frame's timestamp given to the tracker (SkeletonTrackerOptions::max_gap_ratio).
   bool timestamps = true;
+  // The model's floor on every tracked frame (--floor; see the header comment).
+  bool floor = false;
   capture::SkeletonTrackerOptions tracker;
 };
 
@@ -144,6 +155,8 @@ struct TrackerEvalRow {
   int calibration_frame = -1, losses = 0, recoveries = 0;
   // See the header comment; nullopt where the track never started from the calibration pose.
   std::optional<double> aligned_mpjpe_cm;
+  // --floor on only (see the header comment).
+  std::optional<double> floor_posed_mpjpe_cm, floor_mpjpe_cm;
   double torso_depth_cm = 0, torso_breadth_cm = 0;
   double ms_per_frame = 0, cpu_ms_per_frame = 0;
 };

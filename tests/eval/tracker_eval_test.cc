@@ -95,6 +95,8 @@ TEST(TrackerCli, Flags) {
   EXPECT_TRUE(Parse({"--trunk-breadth", "on"})->options.tracker.calibration.fit_trunk_breadth);
   EXPECT_EQ(Parse({"--hanging-arm", "off"})->options.tracker.hanging_arm.min_support, 0);
   EXPECT_GT(Parse({"--hanging-arm", "on"})->options.tracker.hanging_arm.min_support, 0);
+  EXPECT_FALSE(Parse({})->options.floor);
+  EXPECT_TRUE(Parse({"--floor", "on"})->options.floor);
   EXPECT_EQ(Parse({"--variants", "drops,normal"})->options.variants,
             (std::vector<std::string>{"drops", "normal"}));
   EXPECT_TRUE(Parse({"--sensor-pose", "slam"})->options.slam_poses);
@@ -131,6 +133,7 @@ TEST(TrackerCli, BadInputIsRefused) {
   ExpectUsage({"--noise", "maybe"}, "--noise must be on or off");
   ExpectUsage({"--trunk-breadth", "yes"}, "--trunk-breadth must be on or off");
   ExpectUsage({"--hanging-arm", "1"}, "--hanging-arm must be on or off");
+  ExpectUsage({"--floor", "yes"}, "--floor must be on or off");
   ExpectUsage({"--torso-depth", "on"}, "--torso-depth must be off, calibrated or always");
   ExpectUsage({"--body", ""}, "--body");
   ExpectUsage({"--limb-recheck", "-1"}, "--limb-recheck");
@@ -406,6 +409,17 @@ TEST(TrackerEval, TurningFramesAreTheTurnsConstruction) {
   EXPECT_EQ(turning, 19);
 }
 
+// The first `frames` frames of turn-and-kick (the calibration pose first) on the skinned body
+// at `glb`.
+TrackerEvalOptions SkinnedTurnAndKick(const std::string& glb, int frames) {
+  TrackerEvalOptions o;
+  o.scenarios = {"turn-and-kick"};
+  o.body_path = glb;
+  o.body_for_all = true;
+  o.max_frames = frames;
+  return o;
+}
+
 TEST(TrackerEval, CalibrationAlignmentRemovesTheRigsJointPlacement) {
   // CesiumMan's rig puts its hips at the crotch and its shoulders where a collarbone starts
   // (docs/measurements.md), so while the subject holds the calibration pose (turn-and-kick's
@@ -416,12 +430,7 @@ TEST(TrackerEval, CalibrationAlignmentRemovesTheRigsJointPlacement) {
   // (1.6-1.7 cm), where the truth's joints follow the tracker's model.
   const std::string glb = SharedData("models/CesiumMan.glb");
   if (!fs::exists(glb)) GTEST_SKIP() << glb << " not present";
-  TrackerEvalOptions o;
-  o.scenarios = {"turn-and-kick"};
-  o.body_path = glb;
-  o.body_for_all = true;
-  o.max_frames = 10;
-  const auto run = RunTrackerEval(o);
+  const auto run = RunTrackerEval(SkinnedTurnAndKick(glb, 10));
   ASSERT_TRUE(run.ok()) << run.error().message;
   ASSERT_EQ(run->rows.size(), 1u);
   const TrackerEvalRow& row = run->rows[0];
@@ -429,6 +438,31 @@ TEST(TrackerEval, CalibrationAlignmentRemovesTheRigsJointPlacement) {
   ASSERT_TRUE(row.aligned_mpjpe_cm);
   EXPECT_GT(row.mpjpe_cm, 5.0);
   EXPECT_LT(*row.aligned_mpjpe_cm, 2.0);
+}
+
+TEST(TrackerEval, TheFloorPosesTheTrackersBodyFromTheTruth) {
+  // --floor: CesiumMan's rig puts its hips at the crotch and its shoulders where a collarbone
+  // starts (docs/measurements.md), where the tracker's model, a surface model, does not put
+  // them. Posed from the truth's root and bone directions, the calibrated body is farther off
+  // than on the procedural body, whose joints follow the model (under 3 cm there:
+  // SkeletonTracker.FitsTheLastFrameFromTheTruthWithoutTouchingTheTrack); fitted to the data
+  // from there, its trunk goes where the surface puts it, more than the 5 cm from the
+  // rig's joints (measured 4.5 and 6.1 cm on these frames). Written only when asked for.
+  const std::string glb = SharedData("models/CesiumMan.glb");
+  if (!fs::exists(glb)) GTEST_SKIP() << glb << " not present";
+  TrackerEvalOptions o = SkinnedTurnAndKick(glb, 6);
+  const auto plain = RunTrackerEval(o);
+  ASSERT_TRUE(plain.ok()) << plain.error().message;
+  ASSERT_EQ(plain->rows.size(), 1u);
+  EXPECT_FALSE(plain->rows[0].floor_mpjpe_cm);
+  o.floor = true;
+  const auto run = RunTrackerEval(o);
+  ASSERT_TRUE(run.ok()) << run.error().message;
+  const TrackerEvalRow& row = run->rows[0];
+  EXPECT_EQ(row.mpjpe_cm, plain->rows[0].mpjpe_cm);  // the oracle leaves the track as it is
+  ASSERT_TRUE(row.floor_posed_mpjpe_cm && row.floor_mpjpe_cm);
+  EXPECT_GT(*row.floor_posed_mpjpe_cm, 3.0);
+  EXPECT_GT(*row.floor_mpjpe_cm, 5.0);
 }
 
 TEST(TrackerEval, SlamPosesAreSlamsPredictions) {
