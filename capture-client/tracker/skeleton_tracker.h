@@ -311,6 +311,7 @@ class SkeletonTracker {
     Skeleton posed, fitted;  // sensor frame
   };
   std::optional<OracleFit> FitLastFrameFrom(const Skeleton& start_in_sensor) const;
+
   // The calibration, once calibrated.
   const std::optional<BodyCalibration>& calibration() const { return calibration_; }
   // Forgets everything (a new subject).

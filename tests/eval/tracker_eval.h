@@ -43,9 +43,9 @@
 // ms_per_frame stays the tracker's alone.
 // --floor on|off: the body model's floor beside the track (default off; one fit more a frame,
 // outside the timing): on every tracked frame but the track's start (its calibration), the
-// tracker's body as it is
-// then is posed from the ground truth's skeleton and fitted to that frame's observation
-// (SkeletonTracker::FitLastFrameFrom), as if the track had never lost anything.
+// tracker's body as it is then is posed from the ground truth's skeleton and fitted to that
+// frame's observation (SkeletonTracker::FitLastFrameFrom), as if the track had never lost
+// anything.
 // floor_posed_mpjpe_cm is that pose's mean 16-joint error before the fit (the body's
 // proportions and its joint placement against the truth's rig), floor_mpjpe_cm after it (what
 // the data and this model give near the truth): a row near its floor is the model's, a row
