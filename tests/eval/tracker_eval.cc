@@ -111,6 +111,22 @@ double Mean(const std::vector<double>& v) {
   return v.empty() ? 0 : std::accumulate(v.begin(), v.end(), 0.0) / v.size();
 }
 
+// A tracked frame's errors (cm) into its frames row; mpjpe_m is Mpjpe(tracked, truth).
+void AddJointErrors(const Skeleton& tracked, const Skeleton& truth, double mpjpe_m,
+                    TrackerFrameRow* frame) {
+  const auto cm = [&](Joint j) { return 100 * (tracked[j] - truth[j]).norm(); };
+  frame->mpjpe_cm = 100 * mpjpe_m;
+  for (int j = 0; j < kJointCount; ++j)
+    if (const double e = cm(static_cast<Joint>(j)); e > frame->worst_cm) {
+      frame->worst_cm = e;
+      frame->worst_joint = static_cast<Joint>(j);
+    }
+  frame->l_hand_cm = cm(Joint::kLeftHand);
+  frame->r_hand_cm = cm(Joint::kRightHand);
+  frame->l_foot_cm = cm(Joint::kLeftFoot);
+  frame->r_foot_cm = cm(Joint::kRightFoot);
+}
+
 struct CaseSum {
   int frames = 0, tracked = 0;
   double err = 0;
@@ -119,7 +135,8 @@ struct CaseSum {
 Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std::string& variant,
                                 int iterations, int subsample, const TrackerEvalOptions& o,
                                 std::map<std::string, CaseSum>* cases, JointErrorTable* joints,
-                                ConfidenceErrorTable* confidence, LimbVisibilityTable* limbs) {
+                                ConfidenceErrorTable* confidence, LimbVisibilityTable* limbs,
+                                std::vector<TrackerFrameRow>* frames) {
   capture::SkeletonTrackerOptions to = o.tracker;
   to.fit.iterations = iterations;
   to.subsample = subsample;
@@ -183,6 +200,22 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
     if (last == capture::TrackState::kTracking && r.state == capture::TrackState::kLost)
       ++row.losses;
     last = r.state;
+    TrackerFrameRow frame;
+    if (frames) {
+      frame.scenario = row.scenario;
+      frame.variant = row.variant;
+      frame.iterations = iterations;
+      frame.subsample = subsample;
+      frame.seed = row.seed;
+      frame.frame = f;
+      frame.state = r.state;
+      frame.calibrated = r.calibrated;
+      frame.recovered = r.recovered;
+      frame.points = r.points;
+      frame.inlier_share = r.inlier_share;
+      frame.outlier_share = r.outlier_share;
+      frame.coverage = r.coverage;
+    }
     double err = 0;
     if (r.skeleton) {
       ++row.tracked;
@@ -198,13 +231,16 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
         if (const auto oracle = tracker.FitLastFrameFrom(truth)) {
           floor_posed_errors.push_back(Mpjpe(oracle->posed, truth));
           floor_errors.push_back(Mpjpe(oracle->fitted, truth));
+          frame.floor_mpjpe_cm = 100 * floor_errors.back();
         }
+      if (frames) AddJointErrors(*r.skeleton, truth, err, &frame);
       const Eigen::Vector3d up = world_from_sensor.linear().transpose() * world_up;
       if (const auto h = HeadingErrorDeg(*r.skeleton, truth, up)) headings.push_back(*h);
       joints->Add(*r.skeleton, truth);
       confidence->Add(*r.skeleton, truth);
       limbs->Add(VisiblePartAreas(view.part_labels, truth, camera), *r.skeleton, truth);
     }
+    if (frames) frames->push_back(std::move(frame));
     const auto hard = HardCases(
         truth, previous_truth ? &*previous_truth : nullptr,
         (f - previous_f) / scene.frame_rate_hz(), camera,
@@ -266,7 +302,7 @@ Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& o) {
             ConfidenceErrorTable confidence;
             LimbVisibilityTable limbs;
             auto row = RunOne(*scene, variant, iterations, subsample, o, &cases, &joints,
-                              &confidence, &limbs);
+                              &confidence, &limbs, o.frames ? &run.frames : nullptr);
             if (!row.ok()) return row.error();
             run.rows.push_back(*row);
             const auto stats = joints.Stats();
@@ -402,6 +438,27 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
         .Add("hidden_middle_cm", l.stats.hidden_middle_cm);
     report.rows.push_back(std::move(row));
   }
+  for (const TrackerFrameRow& f : run.frames) {
+    proto::ReportRow row = SettingRow("frames", f);
+    row.Add("frame", static_cast<long long>(f.frame))
+        .Add("state", std::string(capture::TrackStateName(f.state)))
+        .Add("calibrated", static_cast<long long>(f.calibrated))
+        .Add("recovered", static_cast<long long>(f.recovered))
+        .Add("points", static_cast<long long>(f.points))
+        .Add("inlier_share", f.inlier_share)
+        .Add("outlier_share", f.outlier_share)
+        .Add("coverage", f.coverage);
+    if (f.mpjpe_cm)
+      row.Add("mpjpe_cm", *f.mpjpe_cm)
+          .Add("worst_joint", std::string(JointName(f.worst_joint)))
+          .Add("worst_cm", f.worst_cm)
+          .Add("l_hand_cm", f.l_hand_cm)
+          .Add("r_hand_cm", f.r_hand_cm)
+          .Add("l_foot_cm", f.l_foot_cm)
+          .Add("r_foot_cm", f.r_foot_cm);
+    if (f.floor_mpjpe_cm) row.Add("floor_mpjpe_cm", *f.floor_mpjpe_cm);
+    report.rows.push_back(std::move(row));
+  }
   const std::vector<TrackerSeedSummary> seeds = SummariseSeeds(run.rows);
   if (seeds.size() < run.rows.size())
     for (const TrackerSeedSummary& s : seeds) {
@@ -427,7 +484,7 @@ std::set<std::string> TrackerFlags() {
           "limb-recheck", "turn-starts", "noise",         "seeds",          "json",
           "torso-depth",  "held-twists", "front-confirm", "uncross-return", "static-scene",
           "sensor-pose",  "limb-jump",   "timestamps",    "trunk-breadth",  "hanging-arm",
-          "floor"};
+          "floor",        "frames"};
 }
 
 namespace {
@@ -551,7 +608,7 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
         std::pair{"limb-jump", &o.tracker.turn_start_jump_check},
         std::pair{"trunk-breadth", &o.tracker.calibration.fit_trunk_breadth},
         std::pair{"timestamps", &o.timestamps}, std::pair{"noise", &o.depth_noise},
-        std::pair{"floor", &o.floor}})
+        std::pair{"floor", &o.floor}, std::pair{"frames", &o.frames}})
     if (auto text = cl.Get(flag)) {
       auto on = ParseOnOff(flag, *text);
       if (!on.ok()) return on.error();

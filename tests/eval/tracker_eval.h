@@ -8,7 +8,7 @@
 //                        [--front-confirm N] [--uncross-return on|off]
 //                        [--static-scene on|off] [--limb-jump on|off] [--noise on|off]
 //                        [--sensor-pose truth|slam] [--timestamps on|off] [--floor on|off]
-//                        [--seeds N[,N...]] [--json FILE]
+//                        [--frames on|off] [--seeds N[,N...]] [--json FILE]
 //
 // --seeds: the scene's seeds, each a run of its own (default 1): the seed draws the depth
 // noise (and walk-handheld's hand shake), and a tracker fits every frame from the last one,
@@ -50,6 +50,16 @@
 // proportions and its joint placement against the truth's rig), floor_mpjpe_cm after it (what
 // the data and this model give near the truth): a row near its floor is the model's, a row
 // far above it the tracking's. Means over those frames; written only with --floor on.
+// --frames on|off: the table "frames" (default off), one row per frame given to the tracker,
+// in order, so that a row's mean can be read as the frames where it was made (where a track
+// slid off, what the fit saw then): frame (the scene's frame index), state (the tracker's
+// after the frame: waiting, tracking, lost), calibrated and recovered (1 on the frame that
+// started or restarted the track), points (the fit's data points), inlier_share,
+// outlier_share and coverage (BodyFitResult's, of the frame's fit; 0 where none ran); where
+// the frame gave a skeleton: mpjpe_cm (its mean 16-joint error: the row's mpjpe_cm is the
+// mean of these), worst_joint and worst_cm (the joint farthest from the truth), l_hand_cm,
+// r_hand_cm, l_foot_cm, r_foot_cm, and with --floor on floor_mpjpe_cm where the floor's fit
+// ran.
 // Per scenario, variant and speed setting (iterations x subsample), every sensor frame is
 // rendered with Kinect-like depth noise (on by default) and tracked, frames in order through
 // one tracker that is given the sensor pose and the world's up (as the synthetic source gives
@@ -143,6 +153,8 @@ struct TrackerEvalOptions {
   bool timestamps = true;
   // The model's floor on every tracked frame (--floor; see the header comment).
   bool floor = false;
+  // One row per frame (--frames; see the header comment).
+  bool frames = false;
   capture::SkeletonTrackerOptions tracker;
 };
 
@@ -189,6 +201,22 @@ struct TrackerLimbRow {
   LimbVisibilityStats stats;
 };
 
+// --frames on only: one frame of a run (see the header comment).
+struct TrackerFrameRow {
+  std::string scenario, variant;
+  int iterations = 0, subsample = 0, seed = 1;
+  int frame = 0;
+  capture::TrackState state = capture::TrackState::kWaitingForCalibration;
+  bool calibrated = false, recovered = false;
+  int points = 0;
+  double inlier_share = 0, outlier_share = 0, coverage = 0;
+  std::optional<double> mpjpe_cm;  // the rest only where the frame gave a skeleton
+  Joint worst_joint = Joint::kHead;
+  double worst_cm = 0;
+  double l_hand_cm = 0, r_hand_cm = 0, l_foot_cm = 0, r_foot_cm = 0;
+  std::optional<double> floor_mpjpe_cm;
+};
+
 // One setting (scenario, variant, iterations, subsample) over its seeds: the mean, least and
 // largest of the rows' mpjpe_cm, and the means of p90_cm and tracked_rate.
 struct TrackerSeedSummary {
@@ -204,6 +232,7 @@ struct TrackerEvalRun {
   std::vector<TrackerJointRow> joints;           // kJointCount per row, in Joint order
   std::vector<TrackerConfidenceRow> confidence;  // kConfidenceBinCount per row, in bin order
   std::vector<TrackerLimbRow> limbs;             // kEvalLimbCount per row, in limb order
+  std::vector<TrackerFrameRow> frames;           // --frames on: every row's frames in order
 };
 
 // The rows' settings over their seeds, in the order each setting first appears.
@@ -219,7 +248,8 @@ Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& options);
 // (case, n, tracked_rate, mpjpe_cm) and the table "joints" (joint, n, mean_cm, bias_x_cm,
 // bias_y_cm, bias_z_cm, bias_cm, spread_cm) and the table "confidence" (confidence, n, share,
 // mean_cm, gross_share) and the table "limbs" (limb, in_view_n, hidden_n, in_view_end_cm,
-// hidden_end_cm, in_view_middle_cm, hidden_middle_cm); with more than one seed, the table "seeds"
+// hidden_end_cm, in_view_middle_cm, hidden_middle_cm); with --frames on the table "frames"
+// (see the header comment); with more than one seed, the table "seeds"
 // (SummariseSeeds: scenario, variant, iterations, subsample, seeds, mpjpe_cm, min_mpjpe_cm,
 // max_mpjpe_cm, p90_cm, tracked_rate).
 proto::Report TrackerReport(const TrackerEvalRun& run);

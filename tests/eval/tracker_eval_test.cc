@@ -97,6 +97,8 @@ TEST(TrackerCli, Flags) {
   EXPECT_GT(Parse({"--hanging-arm", "on"})->options.tracker.hanging_arm.min_support, 0);
   EXPECT_FALSE(Parse({})->options.floor);
   EXPECT_TRUE(Parse({"--floor", "on"})->options.floor);
+  EXPECT_TRUE(Parse({"--frames", "on"})->options.frames);
+  EXPECT_FALSE(Parse({"--frames", "off"})->options.frames);
   EXPECT_EQ(Parse({"--variants", "drops,normal"})->options.variants,
             (std::vector<std::string>{"drops", "normal"}));
   EXPECT_TRUE(Parse({"--sensor-pose", "slam"})->options.slam_poses);
@@ -134,6 +136,7 @@ TEST(TrackerCli, BadInputIsRefused) {
   ExpectUsage({"--trunk-breadth", "yes"}, "--trunk-breadth must be on or off");
   ExpectUsage({"--hanging-arm", "1"}, "--hanging-arm must be on or off");
   ExpectUsage({"--floor", "yes"}, "--floor must be on or off");
+  ExpectUsage({"--frames", "all"}, "--frames must be on or off");
   ExpectUsage({"--torso-depth", "on"}, "--torso-depth must be off, calibrated or always");
   ExpectUsage({"--body", ""}, "--body");
   ExpectUsage({"--limb-recheck", "-1"}, "--limb-recheck");
@@ -463,6 +466,100 @@ TEST(TrackerEval, TheFloorPosesTheTrackersBodyFromTheTruth) {
   ASSERT_TRUE(row.floor_posed_mpjpe_cm && row.floor_mpjpe_cm);
   EXPECT_GT(*row.floor_posed_mpjpe_cm, 3.0);
   EXPECT_GT(*row.floor_mpjpe_cm, 5.0);
+}
+
+TEST(TrackerEval, TheFramesTableListsEveryFrameTheRowIsMadeOf) {
+  // --frames: one row per frame given to the tracker, the fast variant every 2nd frame of the
+  // scene. The row's mean is the mean of its frames' errors, and each frame's hand and foot
+  // errors average, over the frames, to the "limbs" table's in-view and hidden means together
+  // (limb_visibility_table.h measures them on its own). Off, as by default, no frame is kept,
+  // and the table changes nothing of the run.
+  TrackerEvalOptions o;
+  o.scenarios = {"turn-and-kick"};
+  o.variants = {"fast"};
+  o.max_frames = 12;
+  o.floor = true;
+  const auto plain = RunTrackerEval(o);
+  ASSERT_TRUE(plain.ok()) << plain.error().message;
+  EXPECT_TRUE(plain->frames.empty());
+  o.frames = true;
+  const auto run = RunTrackerEval(o);
+  ASSERT_TRUE(run.ok()) << run.error().message;
+  ASSERT_EQ(run->rows.size(), 1u);
+  const TrackerEvalRow& row = run->rows[0];
+  EXPECT_EQ(row.mpjpe_cm, plain->rows[0].mpjpe_cm);
+  ASSERT_EQ(run->frames.size(), 12u);
+  double sum = 0, floor_sum = 0;
+  int floors = 0;
+  std::array<double, kEvalLimbCount> end_sum{};
+  for (size_t i = 0; i < run->frames.size(); ++i) {
+    const TrackerFrameRow& f = run->frames[i];
+    EXPECT_EQ(f.frame, static_cast<int>(2 * i));
+    EXPECT_EQ(f.variant, "fast");
+    EXPECT_EQ(f.calibrated, i == 0);  // the calibration pose: the track starts on frame 0
+    EXPECT_EQ(f.state, capture::TrackState::kTracking);
+    EXPECT_GT(f.points, 0);
+    ASSERT_TRUE(f.mpjpe_cm) << f.frame;
+    sum += *f.mpjpe_cm;
+    for (const double e : {*f.mpjpe_cm, f.l_hand_cm, f.r_hand_cm, f.l_foot_cm, f.r_foot_cm})
+      EXPECT_LE(e, f.worst_cm + 1e-9) << f.frame;
+    end_sum[0] += f.l_hand_cm, end_sum[1] += f.r_hand_cm;
+    end_sum[2] += f.l_foot_cm, end_sum[3] += f.r_foot_cm;
+    EXPECT_EQ(f.floor_mpjpe_cm.has_value(), i > 0);  // no floor on the track's start
+    if (f.floor_mpjpe_cm) floor_sum += *f.floor_mpjpe_cm, ++floors;
+  }
+  EXPECT_NEAR(sum / 12, row.mpjpe_cm, 1e-9);
+  ASSERT_TRUE(row.floor_mpjpe_cm);
+  EXPECT_NEAR(floor_sum / floors, *row.floor_mpjpe_cm, 1e-9);
+  ASSERT_EQ(run->limbs.size(), static_cast<size_t>(kEvalLimbCount));
+  for (int l = 0; l < kEvalLimbCount; ++l) {
+    const LimbVisibilityStats& s = run->limbs[l].stats;
+    ASSERT_EQ(s.in_view + s.hidden, 12) << EvalLimbName(l);
+    const double both = (s.in_view * s.in_view_end_cm + s.hidden * s.hidden_end_cm) / 12;
+    EXPECT_NEAR(end_sum[l] / 12, both, 1e-6) << EvalLimbName(l);
+  }
+  const proto::Report report = TrackerReport(*run);
+  const auto frames_rows =
+      std::count_if(report.rows.begin(), report.rows.end(),
+                    [](const proto::ReportRow& r) { return r.table == "frames"; });
+  EXPECT_EQ(frames_rows, 12);
+  EXPECT_NE(report.FormatTable().find("worst_joint"), std::string::npos);
+}
+
+TEST(TrackerEval, TheFramesTableKeepsTheFramesWithoutASkeleton) {
+  // A walk starts without the calibration pose: the tracker waits
+  // (SkeletonTrackerOptions::start_without_calibration_after frames) before it starts from the
+  // proportions. Those frames are in the table, waiting and without errors; the row's mean is
+  // over the frames that gave a skeleton.
+  const std::string bvh = SharedData("mocap/cmu-131_01-walk.bvh");
+  if (!fs::exists(bvh)) GTEST_SKIP() << bvh << " not present";
+  TrackerEvalOptions o;
+  o.scenarios = {"bvh:" + bvh};
+  o.body_path.clear();
+  o.body_for_all = true;
+  const int wait = o.tracker.start_without_calibration_after;
+  ASSERT_GT(wait, 0);
+  o.max_frames = wait + 3;
+  o.frames = true;
+  const auto run = RunTrackerEval(o);
+  ASSERT_TRUE(run.ok()) << run.error().message;
+  ASSERT_EQ(run->frames.size(), static_cast<size_t>(o.max_frames));
+  const TrackerEvalRow& row = run->rows[0];
+  ASSERT_GT(row.tracked, 0);
+  double sum = 0;
+  for (const TrackerFrameRow& f : run->frames) {
+    if (f.frame < row.calibration_frame) {
+      EXPECT_EQ(f.state, capture::TrackState::kWaitingForCalibration) << f.frame;
+      EXPECT_FALSE(f.mpjpe_cm) << f.frame;
+    } else {
+      EXPECT_EQ(f.calibrated, f.frame == row.calibration_frame) << f.frame;
+      ASSERT_TRUE(f.mpjpe_cm) << f.frame;
+      sum += *f.mpjpe_cm;
+    }
+  }
+  EXPECT_NEAR(sum / row.tracked, row.mpjpe_cm, 1e-9);
+  const std::string table = TrackerReport(*run).FormatTable();
+  EXPECT_NE(table.find("waiting_for_calibration"), std::string::npos);
 }
 
 TEST(TrackerEval, SlamPosesAreSlamsPredictions) {
