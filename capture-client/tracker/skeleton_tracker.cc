@@ -581,6 +581,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
     out.skeleton = WithConfidence(*r, obs, options_.fit.inlier_m, true);
     out.state = state_;
     last_observation_ = std::move(obs);
+    last_fit_cost_ = CostWithLostPoints(*r, options_.fit);
     return out;
   }
 
@@ -614,6 +615,7 @@ TrackFrameResult SkeletonTracker::Track(const ImageDepthMm& depth,
   out.skeleton = WithConfidence(fit, obs, options_.fit.inlier_m, out.good_fit);
   out.state = state_;
   last_observation_ = std::move(obs);
+  last_fit_cost_ = CostWithLostPoints(fit, options_.fit);
   return out;
 }
 
@@ -623,8 +625,11 @@ std::optional<SkeletonTracker::OracleFit> SkeletonTracker::FitLastFrameFrom(
   const ArticulatedPose start = body_->PoseFromSkeleton(start_in_sensor);
   OracleFit out;
   out.posed = body_->Pose(start).skeleton;
-  out.fitted =
-      FitBody(*body_, start, *last_observation_, options_.fit, options_.limits).posed.skeleton;
+  const BodyFitResult fit =
+      FitBody(*body_, start, *last_observation_, options_.fit, options_.limits);
+  out.fitted = fit.posed.skeleton;
+  out.fitted_cost = CostWithLostPoints(fit, options_.fit);
+  out.track_cost = last_fit_cost_;
   return out;
 }
 

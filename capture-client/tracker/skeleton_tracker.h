@@ -306,9 +306,14 @@ class SkeletonTracker {
   // last frame's observation as a tracked frame's own start is (FitBody with the options' fit
   // and limits; no turned starts, searches or checks). The tracker's state is not touched.
   // nullopt unless the last frame was tracked or recovered (a calibration frame, a frame
-  // without a person, or none yet).
+  // without a person, or none yet). fitted_cost and track_cost: CostWithLostPoints
+  // (body_fit.h) of that fit and of the fit the track kept on the frame, on the same
+  // observation: a fit from the truth that costs less is a better minimum the track missed (the
+  // search's loss); one that costs as much or more says the data prefer the track's pose (the
+  // model's).
   struct OracleFit {
     Skeleton posed, fitted;  // sensor frame
+    double fitted_cost = 0, track_cost = 0;
   };
   std::optional<OracleFit> FitLastFrameFrom(const Skeleton& start_in_sensor) const;
 
@@ -373,6 +378,7 @@ class SkeletonTracker {
   std::optional<BodyCalibration> calibration_;
   std::optional<ArticulatedBody> body_;
   std::optional<BodyObservation> last_observation_;  // of the last tracked or recovered frame
+  double last_fit_cost_ = 0;  // CostWithLostPoints of the fit kept on that frame
   ArticulatedPose pose_, previous_pose_;
   bool has_previous_ = false;
   // The times of pose_ and previous_pose_, when known; this frame's gap ratio.

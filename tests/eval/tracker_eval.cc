@@ -156,6 +156,7 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
   row.subsample = subsample;
   row.seed = static_cast<int>(scene.seed());
   std::vector<double> errors, aligned_errors, floor_posed_errors, floor_errors, headings, ms, cpu;
+  int floor_cheaper = 0;  // floor frames whose fit from the truth cost less than the track's
   std::optional<CalibrationAlignment> alignment;
   const Eigen::Vector3d world_up = scene.world_up();
   std::optional<Skeleton> previous_truth, previous_world;
@@ -232,6 +233,8 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
           floor_posed_errors.push_back(Mpjpe(oracle->posed, truth));
           floor_errors.push_back(Mpjpe(oracle->fitted, truth));
           frame.floor_mpjpe_cm = 100 * floor_errors.back();
+          frame.floor_cheaper = oracle->fitted_cost < oracle->track_cost;
+          floor_cheaper += frame.floor_cheaper;
         }
       if (frames) AddJointErrors(*r.skeleton, truth, err, &frame);
       const Eigen::Vector3d up = world_from_sensor.linear().transpose() * world_up;
@@ -262,6 +265,7 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
   if (!floor_errors.empty()) {
     row.floor_posed_mpjpe_cm = 100 * Mean(floor_posed_errors);
     row.floor_mpjpe_cm = 100 * Mean(floor_errors);
+    row.floor_cheaper_rate = static_cast<double>(floor_cheaper) / floor_errors.size();
   }
   if (!headings.empty()) {
     row.heading_deg = Median(headings);
@@ -393,7 +397,8 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
     if (r.aligned_mpjpe_cm) row.Add("aligned_mpjpe_cm", *r.aligned_mpjpe_cm);
     if (r.floor_mpjpe_cm)
       row.Add("floor_posed_mpjpe_cm", *r.floor_posed_mpjpe_cm)
-          .Add("floor_mpjpe_cm", *r.floor_mpjpe_cm);
+          .Add("floor_mpjpe_cm", *r.floor_mpjpe_cm)
+          .Add("floor_cheaper_rate", *r.floor_cheaper_rate);
     row.Add("torso_depth_cm", r.torso_depth_cm).Add("torso_breadth_cm", r.torso_breadth_cm);
     row.Add("ms_per_frame", r.ms_per_frame).Add("cpu_ms_per_frame", r.cpu_ms_per_frame);
     report.rows.push_back(std::move(row));
@@ -456,7 +461,9 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
           .Add("r_hand_cm", f.r_hand_cm)
           .Add("l_foot_cm", f.l_foot_cm)
           .Add("r_foot_cm", f.r_foot_cm);
-    if (f.floor_mpjpe_cm) row.Add("floor_mpjpe_cm", *f.floor_mpjpe_cm);
+    if (f.floor_mpjpe_cm)
+      row.Add("floor_mpjpe_cm", *f.floor_mpjpe_cm)
+          .Add("floor_cheaper", static_cast<long long>(f.floor_cheaper));
     report.rows.push_back(std::move(row));
   }
   const std::vector<TrackerSeedSummary> seeds = SummariseSeeds(run.rows);

@@ -49,7 +49,12 @@
 // floor_posed_mpjpe_cm is that pose's mean 16-joint error before the fit (the body's
 // proportions and its joint placement against the truth's rig), floor_mpjpe_cm after it (what
 // the data and this model give near the truth): a row near its floor is the model's, a row
-// far above it the tracking's. Means over those frames; written only with --floor on.
+// far above it the tracking's, unless the cost prefers the track's pose. floor_cheaper_rate:
+// the share of those frames on which that fit costs less than the fit the track kept
+// (SkeletonTracker::OracleFit's costs, on the same observation): a minimum the track's search
+// missed; where the rate is low, the data and the model prefer the track's pose, and the
+// distance above the floor is the model's as well. Means and shares over those frames;
+// written only with --floor on.
 // --frames on|off: the table "frames" (default off), one row per frame given to the tracker,
 // in order, so that a row's mean can be read as the frames where it was made (where a track
 // slid off, what the fit saw then): frame (the scene's frame index), state (the tracker's
@@ -58,8 +63,8 @@
 // outlier_share and coverage (BodyFitResult's, of the frame's fit; 0 where none ran); where
 // the frame gave a skeleton: mpjpe_cm (its mean 16-joint error: the row's mpjpe_cm is the
 // mean of these), worst_joint and worst_cm (the joint farthest from the truth), l_hand_cm,
-// r_hand_cm, l_foot_cm, r_foot_cm, and with --floor on floor_mpjpe_cm where the floor's fit
-// ran.
+// r_hand_cm, l_foot_cm, r_foot_cm, and with --floor on floor_mpjpe_cm and floor_cheaper (1
+// where the fit from the truth cost less than the track's) where the floor's fit ran.
 // Per scenario, variant and speed setting (iterations x subsample), every sensor frame is
 // rendered with Kinect-like depth noise (on by default) and tracked, frames in order through
 // one tracker that is given the sensor pose and the world's up (as the synthetic source gives
@@ -168,7 +173,7 @@ struct TrackerEvalRow {
   // See the header comment; nullopt where the track never started from the calibration pose.
   std::optional<double> aligned_mpjpe_cm;
   // --floor on only (see the header comment).
-  std::optional<double> floor_posed_mpjpe_cm, floor_mpjpe_cm;
+  std::optional<double> floor_posed_mpjpe_cm, floor_mpjpe_cm, floor_cheaper_rate;
   double torso_depth_cm = 0, torso_breadth_cm = 0;
   double ms_per_frame = 0, cpu_ms_per_frame = 0;
 };
@@ -215,6 +220,7 @@ struct TrackerFrameRow {
   double worst_cm = 0;
   double l_hand_cm = 0, r_hand_cm = 0, l_foot_cm = 0, r_foot_cm = 0;
   std::optional<double> floor_mpjpe_cm;
+  bool floor_cheaper = false;  // with floor_mpjpe_cm only
 };
 
 // One setting (scenario, variant, iterations, subsample) over its seeds: the mean, least and

@@ -463,7 +463,9 @@ TEST(TrackerEval, TheFloorPosesTheTrackersBodyFromTheTruth) {
   ASSERT_TRUE(run.ok()) << run.error().message;
   const TrackerEvalRow& row = run->rows[0];
   EXPECT_EQ(row.mpjpe_cm, plain->rows[0].mpjpe_cm);  // the oracle leaves the track as it is
-  ASSERT_TRUE(row.floor_posed_mpjpe_cm && row.floor_mpjpe_cm);
+  ASSERT_TRUE(row.floor_posed_mpjpe_cm && row.floor_mpjpe_cm && row.floor_cheaper_rate);
+  EXPECT_GE(*row.floor_cheaper_rate, 0.0);
+  EXPECT_LE(*row.floor_cheaper_rate, 1.0);
   EXPECT_GT(*row.floor_posed_mpjpe_cm, 3.0);
   EXPECT_GT(*row.floor_mpjpe_cm, 5.0);
 }
@@ -490,7 +492,7 @@ TEST(TrackerEval, TheFramesTableListsEveryFrameTheRowIsMadeOf) {
   EXPECT_EQ(row.mpjpe_cm, plain->rows[0].mpjpe_cm);
   ASSERT_EQ(run->frames.size(), 12u);
   double sum = 0, floor_sum = 0;
-  int floors = 0;
+  int floors = 0, cheaper = 0;
   std::array<double, kEvalLimbCount> end_sum{};
   for (size_t i = 0; i < run->frames.size(); ++i) {
     const TrackerFrameRow& f = run->frames[i];
@@ -506,11 +508,13 @@ TEST(TrackerEval, TheFramesTableListsEveryFrameTheRowIsMadeOf) {
     end_sum[0] += f.l_hand_cm, end_sum[1] += f.r_hand_cm;
     end_sum[2] += f.l_foot_cm, end_sum[3] += f.r_foot_cm;
     EXPECT_EQ(f.floor_mpjpe_cm.has_value(), i > 0);  // no floor on the track's start
-    if (f.floor_mpjpe_cm) floor_sum += *f.floor_mpjpe_cm, ++floors;
+    if (f.floor_mpjpe_cm) floor_sum += *f.floor_mpjpe_cm, cheaper += f.floor_cheaper, ++floors;
   }
   EXPECT_NEAR(sum / 12, row.mpjpe_cm, 1e-9);
   ASSERT_TRUE(row.floor_mpjpe_cm);
   EXPECT_NEAR(floor_sum / floors, *row.floor_mpjpe_cm, 1e-9);
+  ASSERT_TRUE(row.floor_cheaper_rate);
+  EXPECT_NEAR(static_cast<double>(cheaper) / floors, *row.floor_cheaper_rate, 1e-12);
   ASSERT_EQ(run->limbs.size(), static_cast<size_t>(kEvalLimbCount));
   for (int l = 0; l < kEvalLimbCount; ++l) {
     const LimbVisibilityStats& s = run->limbs[l].stats;
