@@ -58,9 +58,10 @@
 // --frames on|off: the table "frames" (default off), one row per frame given to the tracker,
 // in order, so that a row's mean can be read as the frames where it was made (where a track
 // slid off, what the fit saw then): frame (the scene's frame index), state (the tracker's
-// after the frame: waiting, tracking, lost), calibrated and recovered (1 on the frame that
-// started or restarted the track), points (the fit's data points), inlier_share,
-// outlier_share and coverage (BodyFitResult's, of the frame's fit; 0 where none ran); where
+// after the frame: waiting_for_calibration, tracking, lost), calibrated and recovered (1 on
+// the frame that started or restarted the track), points (the fit's data points),
+// inlier_share, outlier_share and coverage (BodyFitResult's, of the frame's fit; 0 where none
+// ran); where
 // the frame gave a skeleton: mpjpe_cm (its mean 16-joint error: the row's mpjpe_cm is the
 // mean of these), worst_joint and worst_cm (the joint farthest from the truth), l_hand_cm,
 // r_hand_cm, l_foot_cm, r_foot_cm, and with --floor on floor_mpjpe_cm and floor_cheaper (1
