@@ -918,7 +918,8 @@ TEST(SkeletonTracker, FitsTheLastFrameFromTheTruthWithoutTouchingTheTrack) {
     ++n;
     // The costs, on the frame's observation: the track's fit and the truth's lie in one basin
     // here, so they cost about the same (within 10 %); a start 1 m to the side, where no capsule
-    // lies within the fit's outlier_m (15 cm) of the person, loses every point and costs far more.
+    // starts within the fit's outlier_m (15 cm) of the person's points, so that the data term
+    // cannot pull it back, costs over 3 times as much.
     ASSERT_GT(oracle->track_cost, 0) << "frame " << f;
     min_ratio = std::min(min_ratio, oracle->fitted_cost / oracle->track_cost);
     max_ratio = std::max(max_ratio, oracle->fitted_cost / oracle->track_cost);
