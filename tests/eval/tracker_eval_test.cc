@@ -373,6 +373,16 @@ TEST(TrackerEval, TheDropsVariantSeesFramesUnevenlyAndTracksThem) {
   EXPECT_LT(row.mpjpe_cm, 5.0);
 }
 
+// The CMU walk at `bvh` on the procedural body (its ground-truth joints where the tracker's
+// model puts them).
+TrackerEvalOptions ProceduralWalk(const std::string& bvh) {
+  TrackerEvalOptions o;
+  o.scenarios = {"bvh:" + bvh};
+  o.body_path.clear();
+  o.body_for_all = true;
+  return o;
+}
+
 TEST(TrackerEval, TimestampsCarryThePredictionAcrossDroppedFrames) {
   // The procedural body walking CMU 131_01 with frames dropped (seed 1): given the frames'
   // times the tracker carries the last root displacement on for as many intervals as have
@@ -381,11 +391,8 @@ TEST(TrackerEval, TimestampsCarryThePredictionAcrossDroppedFrames) {
   // issue's 5 cm, and 6.
   const std::string bvh = SharedData("mocap/cmu-131_01-walk.bvh");
   if (!fs::exists(bvh)) GTEST_SKIP() << bvh << " not present";
-  TrackerEvalOptions o;
-  o.scenarios = {"bvh:" + bvh};
+  TrackerEvalOptions o = ProceduralWalk(bvh);
   o.variants = {"drops"};
-  o.body_path.clear();
-  o.body_for_all = true;
   const auto timed = RunTrackerEval(o);
   o.timestamps = false;
   const auto untimed = RunTrackerEval(o);
@@ -537,10 +544,7 @@ TEST(TrackerEval, TheFramesTableKeepsTheFramesWithoutASkeleton) {
   // over the frames that gave a skeleton.
   const std::string bvh = SharedData("mocap/cmu-131_01-walk.bvh");
   if (!fs::exists(bvh)) GTEST_SKIP() << bvh << " not present";
-  TrackerEvalOptions o;
-  o.scenarios = {"bvh:" + bvh};
-  o.body_path.clear();
-  o.body_for_all = true;
+  TrackerEvalOptions o = ProceduralWalk(bvh);
   const int wait = o.tracker.start_without_calibration_after;
   ASSERT_GT(wait, 0);
   o.max_frames = wait + 3;
@@ -619,10 +623,7 @@ TEST(TrackerEval, ATurnedStartDoesNotSwingAnArmInViewBehindTheHead) {
 TEST(TrackerEval, BvhPlaysOnTheProceduralBody) {
   const std::string bvh = SharedData("mocap/cmu-131_01-walk.bvh");
   if (!fs::exists(bvh)) GTEST_SKIP() << bvh << " not present";
-  TrackerEvalOptions o;
-  o.scenarios = {"bvh:" + bvh};
-  o.body_path.clear();
-  o.body_for_all = true;
+  TrackerEvalOptions o = ProceduralWalk(bvh);
   o.max_frames = 3;
   const auto run = RunTrackerEval(o);
   ASSERT_TRUE(run.ok()) << run.error().message;
