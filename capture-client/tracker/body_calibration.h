@@ -42,9 +42,10 @@ struct CalibrationOptions {
   double min_span_ratio = 0.75;    // arm span / height at least, > 0
   double max_offset_ratio = 0.08;  // span middle vs legs, / height, > 0
   int refine_rounds = 2;           // radius re-estimation rounds, >= 0
-  // Step 4's trunk breadth, measured instead of the proportional one. The proportions made
-  // CesiumMan's trunk 26 cm broad (its mesh: 21-23 cm at the abdomen); measured: B 8.906 ->
-  // 8.032 cm (docs/measurements.md, session 46).
+  // Step 4's trunk breadth, measured instead of the proportional one: the average proportions
+  // can make a trunk several centimetres too broad (CesiumMan's 26 cm against its mesh's
+  // 21-23 cm at the abdomen), and a trunk too broad takes a hanging arm's points
+  // (torso_depth.h, MeasureTrunkBreadth).
   bool fit_trunk_breadth = true;
   BodyFitOptions fit{.iterations = 20};
   // Step 5: fit the segment lengths with the pose (shape_fit.h), then the radii and the pose

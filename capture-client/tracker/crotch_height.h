@@ -1,6 +1,6 @@
 #pragma once
 // The crotch's height above the floor measured in one depth frame of a walking person, for a
-// body started without the calibration pose (issue 8): the proportional body gives every
+// body started without the calibration pose: the proportional body gives every
 // subject legs of average length for its height, and a subject with shorter legs is tracked
 // with its hips too high (CesiumMan's crotch is at 0.41 H, the procedural body's at 0.46 H).
 //

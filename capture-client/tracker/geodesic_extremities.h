@@ -1,5 +1,5 @@
 #pragma once
-// Geodesic extremities of a person's depth region (issue 8's re-initialisation after a loss):
+// Geodesic extremities of a person's depth region (for re-initialising after a loss):
 // the head, the hands and the feet are the points of the visible surface farthest from the
 // torso along the surface, whatever the pose.
 //  1. Nodes: the person's points thinned to one per voxel_m cube (the mean of the points in

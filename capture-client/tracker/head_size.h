@@ -1,6 +1,6 @@
 #pragma once
 // The head's size measured in one depth frame of a person, for a body started without the
-// calibration pose (issue 8). The proportional body (BodyShape::FromHeight) gives every
+// calibration pose. The proportional body (BodyShape::FromHeight) gives every
 // subject an average head, and the standing height then hangs the neck and the whole trunk
 // below the top of the head by that average: a head larger than average puts the track's
 // neck, waist and hips too high (CesiumMan's: this measurement reads 0.18 H from its top to

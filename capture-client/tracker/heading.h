@@ -1,5 +1,5 @@
 #pragma once
-// The body's heading when the subject has not shown the calibration pose (issue 8): an upright
+// The body's heading when the subject has not shown the calibration pose: an upright
 // person in any heading, seen in depth, where front and back give nearly the same silhouette
 // and surface (most of all in a side view).
 //  - Candidates: count headings evenly spaced about the floor's up, starting at "facing the
@@ -11,7 +11,7 @@
 //    while the root has not covered it. The walk must be steady: each half of the path (first
 //    to middle position, middle to last) covers at least min_half_share of the distance. A
 //    subject turning on the spot and then stepping back or aside does not face its
-//    displacement (the CMU walk 131_01 does, frames 100-119); a curved walk does, nearly
+//    displacement (the CMU walk 131_01 does where it turns); a curved walk does, nearly
 //    (walk-handheld's circle), so the path need not be straight. A slow walk covers 0.3 m in
 //    50 frames rather than 20 (the CMU walk 131_02 on CesiumMan, 11 cm in 20 frames). The
 //    tracker uses it to settle the front/back ambiguity: a fitted forward more than

@@ -5,12 +5,9 @@
 // The fit's free-space term charges a capsule only where it projects onto pixels that show
 // something farther away or nothing at all; a limb moved behind the body, where the trunk or
 // the head hides it, costs nothing there. So a fit from another start (the turned starts of
-// skeleton_tracker.h) can swing an arm behind the head, leave its points to the trunk, and come
-// out cheaper on a frame where the own fit is poor: on walk-handheld, near variant, seed 5,
-// under SLAM's predicted poses, frame 108, the start turned by +25 degrees put the right hand
-// 80 cm above the truth and 30 cm behind the body at a cost of 0.276 against the own fit's
-// 0.315; the own fit's forearm was in view (55 points on 82 expected), the turned fit's forearm
-// had none, and the track kept the arm there (docs/measurements.md).
+// turned_starts_step.h) can swing an arm behind the head, leave its points to the trunk, and
+// come out cheaper on a frame the own fit explains poorly, although its forearm then has no
+// points where the own fit's had most of those it expects in view.
 //
 // The test is on the limb's end segment (forearm or shin), which carries the hand or foot; the
 // upper segment keeps the points about its joint wherever the limb swings. It asks for the own
@@ -20,9 +17,8 @@
 // the own fit had wrong moves it as far but keeps a fair share of its end segment's points
 // (72-100 % in the cases measured there). Nor is a swap: a fit in which the opposite limb's end
 // segment took at least half of the points this one left (the arms' data swapped, not left;
-// the crossed-limb code, limb_swap.h, judges swaps). On CesiumMan's CMU walk 131_01, near,
-// seed 4, frame 102, the right forearm left 58 points and the left one took 75; counted as a
-// jump, that row went 12.07 -> 16.31 cm.
+// the crossed-limb code, limb_swap.h, judges swaps): counted as a jump, it would discard a fit
+// that may have put swapped limbs right.
 // Frames: the sensor frame (OpenCV axes, metres).
 
 #include <optional>

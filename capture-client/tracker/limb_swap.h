@@ -1,16 +1,15 @@
 #pragma once
 // Left/right limb swaps: a fit whose left limb explains the right limb's points and the right
 // limb the left's (each reaching across the body for the other's data). Gauss-Newton cannot
-// undo it: each limb is held by the data it took, and moving either one alone costs more. The
-// CMU walk 131_01 on the procedural body shows it where the subject turns (frames 84-124: the
-// left hand 60 cm off, the right one 50).
+// undo it: each limb is held by the data it took, and moving either one alone costs more. A
+// walk shows it most where the subject turns, the hands then tens of centimetres off.
 //
 // The swap is recognised as limbs crossed: the left limb's end (LimbEnd: fingertip or sole)
 // lies to the right of the right limb's end, along the parent segment's left axis (the chest's
 // for the arms, the pelvis's for the legs; y, see articulated_body.h). A subject may cross its
 // arms, so crossing only proposes the hypothesis SwappedLimbs: each limb reaching the other's
 // end (ReachLimb, extremity_pose.h); the tracker fits from there and keeps the result only when
-// it costs clearly less (skeleton_tracker.h).
+// it costs clearly less (uncross_step.h).
 // Frames: the sensor frame (OpenCV axes, metres).
 
 #include "capture-client/tracker/articulated_body.h"
@@ -40,10 +39,10 @@ ArticulatedPose SwappedLimbs(const ArticulatedBody& body, const ArticulatedPose&
 // reached across for its points). `pose` with `taker` back at its joint angles in `previous`
 // (the upper segment's rotation in its parent's frame, the hinge angle) and the other limb
 // reaching where `taker` ends in `pose`. SwappedLimbs moves the taker to the other limb's end
-// instead, which is a guess wherever the fit left that limb without data: on the CMU walk
-// 131_01 seen at 15 frames a second, frame 84, the swap's fit cost 46 % more than the crossed
-// one, and the taker returned 24 % less (docs/measurements.md). Ends out of reach leave the
-// other limb straight towards the end. `taker` is one of the pair (else a bug).
+// instead, which is a guess wherever the fit left that limb without data, and a fit from a
+// guess can cost more than the crossed one; the taker's previous angles are where the data
+// last held it. Ends out of reach leave the other limb straight towards the end. `taker` is
+// one of the pair (else a bug).
 ArticulatedPose ReturnedLimb(const ArticulatedBody& body, const ArticulatedPose& pose,
                              const ArticulatedPose& previous, LimbPair pair, Limb taker,
                              const JointLimits& limits = {});

@@ -1,6 +1,6 @@
 #pragma once
 // Fitting the body's segment lengths together with its pose to the calibration pose's depth
-// (issue 8: bodies far from average proportions). Used by CalibrateBody after the pose-only
+// (for bodies far from average proportions). Used by CalibrateBody after the pose-only
 // fit; bone lengths are fixed afterwards.
 //
 // Unknowns: the pose (ArticulatedBody's 31 step parameters) and the 11 lengths of

@@ -6,8 +6,8 @@
 // across small depth gaps, and the tracker keeps every point within keep_near_model_m of the
 // predicted body; a box beside the legs passes both. Its points are beyond outlier_m of the
 // model, so the fit ignores them, but the limb search (limb_search.h), which re-poses a limb
-// to reach lost points, reaches for them: on walk-handheld the subject walks past a box, for
-// 20 frames 20-30 % of the points were the box's, and the right foot was swung into it.
+// to reach lost points, reaches for them: while a subject walks past a box, a fifth or more of
+// its points can be the box's, enough to swing a foot into it.
 //
 // The map is a sparse voxel grid in the world frame (voxel_m), so it needs the sensor's pose
 // on every frame (a static sensor's, or a moving one's from SLAM or ground truth). On every

@@ -1,12 +1,12 @@
 #pragma once
 // The trunk's depth (front to back) measured from side views while tracking, and its breadth
-// from the calibration pose (issue 8; MeasureTrunkBreadth below). The
-// calibration pose faces the sensor: it shows the trunk's breadth, but its depth only through
-// the curvature of the front surface, and the calibrated trunk comes out 0.53-0.56 times as
-// deep as broad on both synthetic bodies, against 0.65-0.7 (procedural) and 0.76 (CesiumMan)
-// on their meshes. A trunk too shallow for a side view can only cover the silhouette by turning
-// its breadth towards the sensor: its heading is then 20-30 degrees off, and a hidden arm
-// follows it (docs/measurements.md, "Where a hidden arm drifts").
+// from the calibration pose (MeasureTrunkBreadth below). The calibration pose faces the
+// sensor: it shows the trunk's breadth, but its depth only through the curvature of the front
+// surface, and the calibrated trunk comes out 0.53-0.56 times as deep as broad on both
+// synthetic bodies, against 0.65-0.7 (procedural) and 0.76 (CesiumMan) on their meshes. A trunk
+// too shallow for a side view can only cover the silhouette by turning its breadth towards the
+// sensor: its heading is then 20-30 degrees off, and a hidden arm, with no points of its own to
+// hold it, follows it.
 //
 // Model. The trunk's cross-section is a stadium: two capsules of radius r whose axes lie s to
 // either side of the spine (BodyShape::torso_radius, torso_half_spread), breadth 2 (r + s),
@@ -33,7 +33,7 @@
 // CesiumMan's side views); a view off side-on only reads wider (w >= r, by at most
 // s |sin max_side_deg|), and the edge rule keeps occluded slices from reading narrower, so a
 // low quantile is the closer estimate: the median read 0.6-1.6 cm deeper than the procedural
-// body's 20-22 cm on its CMU walks, the lower quartile 21.4-22.1 (docs/measurements.md).
+// body's 20-22 cm on its CMU walks, the lower quartile 21.4-22.1.
 
 #include <optional>
 #include <vector>
@@ -91,9 +91,8 @@ BodyShape WithTorsoDepth(const BodyShape& shape, double half_depth_m, double min
 // w = r + s. The chest does not: its slices run into the arms or, above them, the neck; nor
 // does the pelvis once its capsules are as narrow as the body, since its edges then meet the
 // thighs'. One breadth serves the three segments (BodyShape has one). The shape's prior,
-// average-adult proportions, made CesiumMan's trunk 24.6-27.3 cm broad (set B's 24 runs)
-// against its mesh's 20.5-22.7 cm at the abdomen, and its capsules took a hanging arm's points
-// (docs/measurements.md).
+// average-adult proportions, make CesiumMan's trunk 24.6-27.3 cm broad against its mesh's
+// 20.5-22.7 cm at the abdomen, and capsules that broad take a hanging arm's points.
 // Returns the lower spine's half width (MeasureTrunkWidths with every view allowed), metres,
 // when the segment is seen within max_facing_deg of facing the sensor (|sin theta| at least
 // cos max_facing_deg) and shows at least options.min_slices slices whose edges are free;

@@ -6,7 +6,8 @@
 // ArCompositor::Process would make of it. The throughput approaches that of the slower step
 // instead of the sum of both; a frame's own time from its reading to its output grows where
 // the two steps compete for the cores (llvmpipe draws on both: on 2 cores the whole AR loop
-// went from 24 to 30-33 fps and a frame's time from 40 to about 50 ms, docs/measurements.md).
+// runs at 30-33 fps pipelined against 24 step after step, a frame's time about 50 ms against
+// 40; reenact-bench viewer).
 //
 // Threads: the worker runs `next` and Locate, one call at a time and never beside another
 // Locate; Compose runs on the caller's thread inside Next(). The compositor's presentation

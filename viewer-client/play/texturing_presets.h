@@ -24,7 +24,7 @@ namespace reenact::viewer {
 
 // The viewer's default (reenact-viewer play, reenact-bench viewer): the step with the lowest
 // wrong-part rates from 30 degrees on and the best PSNR and SSIM at every view from 90 degrees
-// on in docs/measurements.md (fallback; equal to relit at 0 degrees), at the same frame rate.
+// on (reenact-eval quality; equal to relit at 0 degrees), at the same frame rate.
 inline constexpr std::string_view kDefaultTexturingPreset = "fallback";
 
 // The names above, in that order, comma separated (for usage messages).
