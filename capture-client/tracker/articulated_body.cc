@@ -192,43 +192,6 @@ std::vector<BodyCapsule> BodyShape::Capsules() const {
   return c;
 }
 
-bool LimbEndsMoved(const PosedBody3& a, const PosedBody3& b, Limb limb, double max_move_m) {
-  constexpr Joint kLimbJoints[kLimbCount][2] = {{Joint::kLeftElbow, Joint::kLeftHand},
-                                                {Joint::kRightElbow, Joint::kRightHand},
-                                                {Joint::kLeftKnee, Joint::kLeftFoot},
-                                                {Joint::kRightKnee, Joint::kRightFoot}};
-  for (int l = 0; l < kLimbCount; ++l)
-    if (l != static_cast<int>(limb))
-      for (const Joint j : kLimbJoints[l])
-        if ((a.skeleton[j] - b.skeleton[j]).norm() > max_move_m) return true;
-  return false;
-}
-
-double ArmTrunkDepth(const ArticulatedBody& body, const PosedBody3& posed, Limb limb) {
-  if (limb != Limb::kLeftArm && limb != Limb::kRightArm) return 0;
-  const S upper = LimbUpper(limb), lower = LimbLower(limb);
-  std::vector<Eigen::Vector3d> samples;
-  for (const BodyCapsule& c : body.capsules()) {
-    if (c.segment != upper && c.segment != lower) continue;
-    const Eigen::Isometry3d& t = posed.sensor_from_segment[I(c.segment)];
-    const Eigen::Vector3d a = t * c.a, b = t * c.b;
-    constexpr int kSamples = 8;
-    for (int i = 0; i <= kSamples; ++i) samples.push_back(a + (b - a) * (double(i) / kSamples));
-  }
-  double depth = -std::numeric_limits<double>::infinity();
-  for (const BodyCapsule& c : body.capsules()) {
-    if (c.segment != S::kChest && c.segment != S::kLowerSpine && c.segment != S::kPelvis) continue;
-    const Eigen::Isometry3d& t = posed.sensor_from_segment[I(c.segment)];
-    const Eigen::Vector3d a = t * c.a, ab = t * c.b - a;
-    const double len2 = ab.squaredNorm();
-    for (const Eigen::Vector3d& p : samples) {
-      const double u = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-      depth = std::max(depth, c.radius - (p - a - u * ab).norm());
-    }
-  }
-  return depth;
-}
-
 ArticulatedPose::ArticulatedPose() { local.fill(Eigen::Matrix3d::Identity()); }
 
 ArticulatedBody::ArticulatedBody(const BodyShape& shape)

@@ -130,8 +130,8 @@ struct JointLimits {
   // Axial rotation, each about the segment's own axis. The two spine segments together turn
   // the shoulders up to 57 degrees from the pelvis, about the thoracolumbar spine's range to
   // either side; the thigh turns 46 degrees inwards or outwards, about the hip's range. Without
-  // them the cones allow 100 and 126 degrees: a CesiumMan walk seen from the side was fitted
-  // with the pelvis turned 40-60 degrees from the shoulders (docs/measurements.md).
+  // them the cones allow 100 and 126 degrees, and a body seen from the side, whose depth says
+  // little about the twist, can be fitted with the pelvis turned far from the shoulders.
   double spine_twist_max = 0.5;
   double hip_twist_max = 0.8;
 };
@@ -177,18 +177,6 @@ class ArticulatedBody {
   std::array<Eigen::Vector3d, kBodySegmentCount> offset_;
   std::vector<BodyCapsule> capsules_;
 };
-
-// How deep an arm's axis reaches into the trunk: the largest (r - d) over points along the
-// arm's capsule axes (upper arm and forearm) and the trunk's capsules (chest, abdomen, pelvis;
-// r their radius, d the point's distance to their axis), metres. Negative when every axis
-// point lies outside every trunk capsule: an arm hanging at the side or reaching across the
-// chest stays outside, an arm through the chest does not. A leg: 0 (its hip joint lies
-// inside the pelvis by construction).
-double ArmTrunkDepth(const ArticulatedBody& body, const PosedBody3& posed, Limb limb);
-
-// Whether a limb other than `limb` has its elbow, hand, knee or foot more than max_move_m apart
-// in `a` and `b` (a fit that re-posed `limb` but moved another limb's data).
-bool LimbEndsMoved(const PosedBody3& a, const PosedBody3& b, Limb limb, double max_move_m);
 
 // A rotation about a unit axis by an angle (exp map of angle * axis); identity for a zero
 // vector.

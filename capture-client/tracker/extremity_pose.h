@@ -1,6 +1,6 @@
 #pragma once
 // Poses from geodesic extremities (geodesic_extremities.h): the re-initialisation hypothesis
-// of the tracker's recovery (skeleton_tracker.h).
+// of the tracker's recovery (body_start.h).
 //
 // ReachLimb places one limb's end at a target, the rest of the body held, analytically (two
 // bones, law of cosines): with the limb's root joint j (shoulder or hip), upper length a and

@@ -1,6 +1,7 @@
 #pragma once
-// The gap ratio of the tracker's prediction in time (skeleton_tracker.h, max_gap_ratio): how
-// many of the last frame intervals lie between the last tracked pose and this frame.
+// The gap ratio of the tracker's prediction in time (SkeletonTrackerOptions::max_gap_ratio,
+// skeleton_tracker_options.h): how many of the last frame intervals lie between the last tracked
+// pose and this frame.
 //
 //   g = (t - t1) / (t1 - t0)
 //

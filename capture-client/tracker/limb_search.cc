@@ -50,133 +50,183 @@ ArticulatedPose WithLimb(const ArticulatedPose& pose, Limb limb, const LimbHypot
   return out;
 }
 
-// The search's cost (see the header) of every hypothesis for `limb` at `pose`, and of `pose`
-// itself (*current). *lost: the points `pose` leaves beyond outlier_m of every capsule that
-// some posing of the limb can reach; no hypothesis is scored (empty) unless there are more
-// than min_lost of them.
-std::vector<ScoredHypothesis> ScoreLimbHypotheses(
-    const ArticulatedBody& body, const BodyObservation& obs, const BodyFitOptions& fit,
-    const JointLimits& limits, const LimbSearchOptions& options, const ArticulatedPose& pose,
-    Limb limb, double* current, int* lost = nullptr, double min_lost = -1) {
-  const S upper = LimbUpper(limb), lower = LimbLower(limb);
-  const double delta = fit.huber_m;
-  const double cap_cost = HuberCost(options.cap_m, delta);
-  const double w_sil = SilhouetteSampleWeight(obs, fit, static_cast<int>(body.capsules().size()));
-  const int m = fit.samples_per_capsule;
-  const PosedBody3 posed = body.Pose(pose);
-  const Eigen::Isometry3d& parent = posed.sensor_from_segment[SegmentParent(upper)];
-  const Eigen::Vector3d joint = posed.sensor_from_segment[static_cast<int>(upper)].translation();
-  const Eigen::Vector3d lower_offset = body.offset(lower);
-  const double sign = lower == S::kLeftForearm || lower == S::kRightForearm ? -1.0 : 1.0;
+// The search's cost (see the header) of posings of one limb at `pose`, the rest of the body
+// held. Built once per limb and pose: each point's residual to the held body, and the points
+// whose cost no posing of the limb can change (summed once).
+class LimbPosingCost {
+ public:
+  LimbPosingCost(const ArticulatedBody& body, const BodyObservation& obs, const BodyFitOptions& fit,
+                 const LimbSearchOptions& options, const ArticulatedPose& pose, Limb limb);
 
-  // Residual of every point to the held body; the limb's capsules and its reach from the joint.
-  std::vector<LimbCapsule> local;
-  std::vector<double> rest(obs.points.size(), std::numeric_limits<double>::infinity());
-  double reach = 0;
+  // The cost with the limb posed as in `candidate`; taken(): how many lost points (MarkLost)
+  // it brought within outlier_m of the limb.
+  double CostOf(const ArticulatedPose& candidate);
+  int taken() const { return taken_; }
+  // Marks the points `pose` leaves beyond outlier_m of every capsule, the limb as last posed
+  // by CostOf included; returns how many.
+  int MarkLost();
+
+ private:
+  void PoseLimb(const ArticulatedPose& candidate);
+  // Residual of a point to the limb as last posed, where it is below `below`; infinity where
+  // it is not (a capsule whose bounding sphere lies farther than `below` from the point cannot
+  // bring the residual under it, so its distance is not computed).
+  double LimbResidual(const Eigen::Vector3d& p,
+                      double below = std::numeric_limits<double>::infinity()) const;
+
+  const BodyObservation& obs_;
+  const BodyFitOptions& fit_;
+  S upper_, lower_;
+  double cap_cost_, w_sil_;
+  Eigen::Isometry3d parent_;
+  Eigen::Vector3d joint_, lower_offset_;
+  double sign_;
+  std::vector<LimbCapsule> local_;
+  std::vector<double> rest_;  // each point's residual to the held body
+  double fixed_cost_ = 0;
+  std::vector<int> active_;  // the points whose cost the limb can change
+  // The limb's posed capsules' axes and bounding spheres (midpoint, half length + radius).
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> axes_;
+  std::vector<std::pair<Eigen::Vector3d, double>> spheres_;
+  // is_lost_[j] for active_[j]: beyond outlier_m of the held body and of the limb at `pose`.
+  std::vector<char> is_lost_;
+  // below_[j]: the residual under which the limb changes active_[j]'s term: its cost (under
+  // min(rest, cap_m)) or, for a lost point, whether it is taken (within outlier_m).
+  std::vector<double> below_;
+  int taken_ = 0;
+};
+
+LimbPosingCost::LimbPosingCost(const ArticulatedBody& body, const BodyObservation& obs,
+                               const BodyFitOptions& fit, const LimbSearchOptions& options,
+                               const ArticulatedPose& pose, Limb limb)
+    : obs_(obs),
+      fit_(fit),
+      upper_(LimbUpper(limb)),
+      lower_(LimbLower(limb)),
+      cap_cost_(HuberCost(options.cap_m, fit.huber_m)),
+      w_sil_(SilhouetteSampleWeight(obs, fit, static_cast<int>(body.capsules().size()))),
+      lower_offset_(body.offset(lower_)),
+      sign_(lower_ == S::kLeftForearm || lower_ == S::kRightForearm ? -1.0 : 1.0),
+      rest_(obs.points.size(), std::numeric_limits<double>::infinity()) {
+  const PosedBody3 posed = body.Pose(pose);
+  parent_ = posed.sensor_from_segment[SegmentParent(upper_)];
+  joint_ = posed.sensor_from_segment[static_cast<int>(upper_)].translation();
+  double reach = 0;  // of the limb's capsules from the joint
   for (const BodyCapsule& c : body.capsules()) {
-    if (c.segment == upper || c.segment == lower) {
-      const bool is_lower = c.segment == lower;
-      local.push_back({is_lower, c.a, c.b, c.radius});
+    if (c.segment == upper_ || c.segment == lower_) {
+      const bool is_lower = c.segment == lower_;
+      local_.push_back({is_lower, c.a, c.b, c.radius});
       // The lower segment turns about its joint: the joint's offset plus the point's.
-      const double base = is_lower ? lower_offset.norm() : 0.0;
+      const double base = is_lower ? lower_offset_.norm() : 0.0;
       reach = std::max(reach, base + std::max(c.a.norm(), c.b.norm()) + c.radius);
       continue;
     }
     const Eigen::Isometry3d& t = posed.sensor_from_segment[static_cast<int>(c.segment)];
     const Eigen::Vector3d a = t * c.a, b = t * c.b;
     for (size_t i = 0; i < obs.points.size(); ++i)
-      rest[i] = std::min(rest[i], AxisDistance(a, b, obs.points[i]) - c.radius);
+      rest_[i] = std::min(rest_[i], AxisDistance(a, b, obs.points[i]) - c.radius);
   }
   // A point whose distance to any posing of the limb (at least |p - joint| - reach) cannot
   // fall below min(rest, cap_m) costs the same for every hypothesis.
-  double fixed_cost = 0;
-  std::vector<int> active;
   for (size_t i = 0; i < obs.points.size(); ++i) {
-    if ((obs.points[i] - joint).norm() - reach >= std::min(rest[i], options.cap_m))
-      fixed_cost += std::min(HuberCost(rest[i], delta), cap_cost);
+    if ((obs.points[i] - joint_).norm() - reach >= std::min(rest_[i], options.cap_m))
+      fixed_cost_ += std::min(HuberCost(rest_[i], fit.huber_m), cap_cost_);
     else
-      active.push_back(static_cast<int>(i));
+      active_.push_back(static_cast<int>(i));
   }
+  axes_.resize(local_.size());
+  spheres_.resize(local_.size());
+  is_lost_.assign(active_.size(), 0);
+  below_.resize(active_.size());
+  for (size_t j = 0; j < active_.size(); ++j)
+    below_[j] = std::min(rest_[active_[j]], options.cap_m);
+}
 
-  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> axes(local.size());
-  // Each posed capsule's bounding sphere: its axis's midpoint, half its length plus its radius.
-  std::vector<std::pair<Eigen::Vector3d, double>> spheres(local.size());
-  // Residual of a point to the limb as last posed by cost_of, where it is below `below`;
-  // infinity where it is not (a capsule whose bounding sphere lies farther than `below` from
-  // the point cannot bring the residual under it, so its distance is not computed).
-  auto limb_residual = [&](const Eigen::Vector3d& p,
-                           double below = std::numeric_limits<double>::infinity()) {
-    double e = std::numeric_limits<double>::infinity();
-    for (size_t k = 0; k < axes.size(); ++k) {
-      const double r = spheres[k].second + below;
-      if ((p - spheres[k].first).squaredNorm() > r * r) continue;
-      e = std::min(e, AxisDistance(axes[k].first, axes[k].second, p) - local[k].radius);
-    }
-    return e < below ? e : std::numeric_limits<double>::infinity();
-  };
-  // is_lost[j] for active[j]: beyond outlier_m of the held body and of the limb at `pose`;
-  // taken: how many of them the last posing brought within outlier_m of the limb.
-  std::vector<char> is_lost(active.size(), 0);
-  // below[j]: the residual under which the limb changes active[j]'s term: its cost (under
-  // min(rest, cap_m)) or, for a lost point, whether it is taken (within outlier_m).
-  std::vector<double> below(active.size());
-  for (size_t j = 0; j < active.size(); ++j) below[j] = std::min(rest[active[j]], options.cap_m);
-  int taken = 0;
-  auto cost_of = [&](const ArticulatedPose& candidate) {
-    // Pose only this limb: upper rotation from the parent, lower by the hinge.
-    Eigen::Isometry3d tu = Eigen::Isometry3d::Identity();
-    tu.linear() = parent.linear() * candidate.local[static_cast<int>(upper)];
-    tu.translation() = joint;
-    Eigen::Isometry3d tl = Eigen::Isometry3d::Identity();
-    tl.linear() =
-        tu.linear() * Eigen::AngleAxisd(sign * candidate.hinge_angle[static_cast<int>(lower)],
-                                        Eigen::Vector3d::UnitY())
-                          .toRotationMatrix();
-    tl.translation() = tu * lower_offset;
-    for (size_t k = 0; k < local.size(); ++k) {
-      const Eigen::Isometry3d& t = local[k].lower ? tl : tu;
-      axes[k] = {t * local[k].a, t * local[k].b};
-      spheres[k] = {0.5 * (axes[k].first + axes[k].second),
-                    0.5 * (axes[k].second - axes[k].first).norm() + local[k].radius};
-    }
-    double cost = fixed_cost;
-    taken = 0;
-    for (size_t j = 0; j < active.size(); ++j) {
-      const int i = active[j];
-      const double e_limb = limb_residual(obs.points[i], below[j]);
-      taken += is_lost[j] && e_limb <= fit.outlier_m;
-      cost += std::min(HuberCost(std::min(rest[i], e_limb), delta), cap_cost);
-    }
-    for (const auto& [a, b] : axes)
-      for (int i = 0; i < m; ++i) {
-        const double t = m == 1 ? 0.5 : static_cast<double>(i) / (m - 1);
-        double e = 0;
-        Eigen::Vector3d grad;
-        if (SilhouetteResidual(obs, a + t * (b - a), &e, &grad)) cost += 0.5 * w_sil * e * e;
-      }
-    return cost;
-  };
+double LimbPosingCost::LimbResidual(const Eigen::Vector3d& p, double below) const {
+  double e = std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < axes_.size(); ++k) {
+    const double r = spheres_[k].second + below;
+    if ((p - spheres_[k].first).squaredNorm() > r * r) continue;
+    e = std::min(e, AxisDistance(axes_[k].first, axes_[k].second, p) - local_[k].radius);
+  }
+  return e < below ? e : std::numeric_limits<double>::infinity();
+}
 
-  *current = cost_of(pose);
+void LimbPosingCost::PoseLimb(const ArticulatedPose& candidate) {
+  // Upper rotation from the parent, lower by the hinge.
+  Eigen::Isometry3d tu = Eigen::Isometry3d::Identity();
+  tu.linear() = parent_.linear() * candidate.local[static_cast<int>(upper_)];
+  tu.translation() = joint_;
+  Eigen::Isometry3d tl = Eigen::Isometry3d::Identity();
+  tl.linear() =
+      tu.linear() * Eigen::AngleAxisd(sign_ * candidate.hinge_angle[static_cast<int>(lower_)],
+                                      Eigen::Vector3d::UnitY())
+                        .toRotationMatrix();
+  tl.translation() = tu * lower_offset_;
+  for (size_t k = 0; k < local_.size(); ++k) {
+    const Eigen::Isometry3d& t = local_[k].lower ? tl : tu;
+    axes_[k] = {t * local_[k].a, t * local_[k].b};
+    spheres_[k] = {0.5 * (axes_[k].first + axes_[k].second),
+                   0.5 * (axes_[k].second - axes_[k].first).norm() + local_[k].radius};
+  }
+}
+
+double LimbPosingCost::CostOf(const ArticulatedPose& candidate) {
+  PoseLimb(candidate);
+  double cost = fixed_cost_;
+  taken_ = 0;
+  for (size_t j = 0; j < active_.size(); ++j) {
+    const int i = active_[j];
+    const double e_limb = LimbResidual(obs_.points[i], below_[j]);
+    taken_ += is_lost_[j] && e_limb <= fit_.outlier_m;
+    cost += std::min(HuberCost(std::min(rest_[i], e_limb), fit_.huber_m), cap_cost_);
+  }
+  const int m = fit_.samples_per_capsule;
+  for (const auto& [a, b] : axes_)
+    for (int i = 0; i < m; ++i) {
+      const double t = m == 1 ? 0.5 : static_cast<double>(i) / (m - 1);
+      double e = 0;
+      Eigen::Vector3d grad;
+      if (SilhouetteResidual(obs_, a + t * (b - a), &e, &grad)) cost += 0.5 * w_sil_ * e * e;
+    }
+  return cost;
+}
+
+int LimbPosingCost::MarkLost() {
   int n_lost = 0;
-  for (size_t j = 0; j < active.size(); ++j) {
-    const int i = active[j];
-    if (rest[i] > fit.outlier_m && limb_residual(obs.points[i]) > fit.outlier_m) {
-      is_lost[j] = 1, ++n_lost;
-      below[j] = std::max(below[j], std::nextafter(fit.outlier_m, 1.0));
+  for (size_t j = 0; j < active_.size(); ++j) {
+    const int i = active_[j];
+    if (rest_[i] > fit_.outlier_m && LimbResidual(obs_.points[i]) > fit_.outlier_m) {
+      is_lost_[j] = 1, ++n_lost;
+      below_[j] = std::max(below_[j], std::nextafter(fit_.outlier_m, 1.0));
     }
   }
-  if (lost) *lost = n_lost;
+  return n_lost;
+}
+
+// The search's cost of every hypothesis for `limb` at `pose`, and of `pose` itself
+// (*current). *lost: the points `pose` leaves beyond outlier_m of every capsule that some
+// posing of the limb can reach; no hypothesis is scored (empty) unless there are more than
+// min_lost of them.
+std::vector<ScoredHypothesis> ScoreLimbHypotheses(
+    const ArticulatedBody& body, const BodyObservation& obs, const BodyFitOptions& fit,
+    const JointLimits& limits, const LimbSearchOptions& options, const ArticulatedPose& pose,
+    Limb limb, double* current, int* lost, double min_lost) {
+  LimbPosingCost posing(body, obs, fit, options, pose, limb);
+  *current = posing.CostOf(pose);
+  const int n_lost = posing.MarkLost();
+  *lost = n_lost;
   std::vector<ScoredHypothesis> scored;
   if (n_lost <= min_lost) return scored;
   const std::vector<LimbHypothesis> hypotheses = LimbHypotheses(pose, limb, limits, options);
   scored.reserve(hypotheses.size());
   ArticulatedPose candidate = pose;
+  const int upper = static_cast<int>(LimbUpper(limb)), lower = static_cast<int>(LimbLower(limb));
   for (const LimbHypothesis& h : hypotheses) {
-    candidate.local[static_cast<int>(upper)] = h.upper_local;
-    candidate.hinge_angle[static_cast<int>(lower)] = h.hinge_angle;
-    const double cost = cost_of(candidate);
-    scored.push_back({cost, h, taken});
+    candidate.local[upper] = h.upper_local;
+    candidate.hinge_angle[lower] = h.hinge_angle;
+    const double cost = posing.CostOf(candidate);
+    scored.push_back({cost, h, posing.taken()});
   }
   return scored;
 }
@@ -276,32 +326,6 @@ int SearchLimbs(const ArticulatedBody& body, const BodyObservation& obs, const B
     ++changed;
   }
   return changed;
-}
-
-std::vector<ArticulatedPose> RankLimbHypotheses(const ArticulatedBody& body,
-                                                const BodyObservation& obs,
-                                                const BodyFitOptions& fit,
-                                                const JointLimits& limits,
-                                                const LimbSearchOptions& options,
-                                                const ArticulatedPose& pose, Limb limb, int count) {
-  options.Check();
-  REENACT_CHECK(count >= 0, "count must be >= 0");
-  std::vector<ArticulatedPose> ranked;
-  if (obs.points.empty() || count == 0) return ranked;
-  double current = 0;
-  std::vector<ScoredHypothesis> scored =
-      ScoreLimbHypotheses(body, obs, fit, limits, options, pose, limb, &current);
-  std::stable_sort(
-      scored.begin(), scored.end(),
-      [](const ScoredHypothesis& a, const ScoredHypothesis& b) { return a.cost < b.cost; });
-  std::vector<bool> used(kHeldLimbDirection + 1, false);
-  for (const ScoredHypothesis& c : scored) {
-    if (static_cast<int>(ranked.size()) >= count) break;
-    if (used[c.h.direction]) continue;
-    used[c.h.direction] = true;
-    ranked.push_back(WithLimb(pose, limb, c.h, limits));
-  }
-  return ranked;
 }
 
 }  // namespace reenact::capture

@@ -23,15 +23,11 @@
 // candidate when it costs at least min_gain (relative) less than the current pose. Of the
 // limbs' candidates, the one taking the most lost points (then: the larger decrease) is
 // applied, the lost points are found again, and the other limbs follow in the same way.
-// Without this rule the cheapest hypothesis anywhere won, and the limb searched first took
-// it: on a skinned body whose head is larger than the model's head capsule (its points within
-// outlier_m, explained poorly), the left arm was raised beside the head for a lower cost while
-// the lost points were the right hand's (CesiumMan turn-and-kick, 40 frames with the left
-// hand 85-94 cm off).
+// Without this rule the cheapest hypothesis anywhere wins, and the limb searched first takes
+// it: where a body part is larger than its capsule (a skinned head), its points lie within
+// outlier_m but are explained poorly, and an arm raised beside it costs less while the lost
+// points are the other hand's.
 //
-// The same hypotheses, ranked (RankLimbHypotheses), start the tracker's limb re-check: a
-// limb that lies on the wrong side of the body has its points explained, worse, by the torso,
-// so no coarse hypothesis beats its current pose, but one near the truth does once fitted.
 // Points that no hypothesis of the limb can reach closer than they already are (farther from
 // the limb's joint than its length allows) cost the same for every hypothesis and are summed
 // once.
@@ -44,8 +40,8 @@
 namespace reenact::capture {
 
 struct LimbSearchOptions {
-  double cap_m = 0.25;     // residual cap, > 0
-  double min_gain = 0.02;  // relative cost decrease required, [0, 1)
+  double cap_m = 0.25;            // residual cap, > 0
+  double min_gain = 0.02;         // relative cost decrease required, [0, 1)
   double min_lost_share = 0.005;  // share of the points lost within a limb's reach, [0, 1]
   int held_twists = 8;            // hinge-plane turns with the upper segment held, >= 0 (0: none)
 
@@ -75,15 +71,5 @@ std::vector<LimbHypothesis> LimbHypotheses(const ArticulatedPose& pose, Limb lim
 int SearchLimbs(const ArticulatedBody& body, const BodyObservation& observation,
                 const BodyFitOptions& fit, const JointLimits& limits,
                 const LimbSearchOptions& options, ArticulatedPose* pose);
-
-// The `count` (>= 0) cheapest hypotheses for `limb` by the search's cost, at most one per
-// direction of the upper segment (the held ones share one), cheapest first; `pose` with only
-// that limb re-posed. Empty for an observation without points.
-std::vector<ArticulatedPose> RankLimbHypotheses(const ArticulatedBody& body,
-                                                const BodyObservation& observation,
-                                                const BodyFitOptions& fit,
-                                                const JointLimits& limits,
-                                                const LimbSearchOptions& options,
-                                                const ArticulatedPose& pose, Limb limb, int count);
 
 }  // namespace reenact::capture

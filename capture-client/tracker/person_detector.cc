@@ -95,23 +95,8 @@ PersonBlob PersonDetector::Detect(const ImageDepthMm& depth,
   REENACT_CHECK(
       depth.width == camera_.width && depth.height == camera_.height && depth.channels == 1,
       "depth image does not match the camera");
-  const int g = options_.grid_step_px;
-  const int gw = (depth.width + g - 1) / g, gh = (depth.height + g - 1) / g;
   PersonBlob blob;
-  blob.grid_step_px = g;
-  blob.mask = ImageGray8(gw, gh, 1, 0);
-  blob.depth_m = Image<float>(gw, gh, 1, 0.f);
-  bool any = false;
-  for (int y = 0; y < gh; ++y)
-    for (int x = 0; x < gw; ++x) {
-      const double z = depth.at(x * g, y * g) * depth_scale_m_;
-      if (z >= options_.min_depth_m && z <= options_.max_depth_m && std::isfinite(z)) {
-        blob.depth_m.at(x, y) = static_cast<float>(z);
-        any = true;
-      }
-    }
-  if (!any) return blob;
-
+  if (!ReadDepthGrid(depth, &blob)) return blob;
   Eigen::Vector3d up = -Eigen::Vector3d::UnitY();
   if (world_from_sensor && world_up && world_up->allFinite() && world_up->norm() > 0)
     up = (world_from_sensor->linear().transpose() * *world_up).normalized();
@@ -120,38 +105,69 @@ PersonBlob PersonDetector::Detect(const ImageDepthMm& depth,
     blob.status = DetectStatus::kNoFloor;
     return blob;
   }
+  GridPoints grid = MarkCandidates(blob);
+  std::vector<Region> regions = GrowRegions(grid);
+  const std::vector<int> roots = MergeRegions(
+      grid, previous_centroid ? options_.tracking_merge_step_m : options_.merge_step_m, &regions);
+  const int best = ChooseRegion(grid, regions, roots, previous_centroid, &blob);
+  if (best < 0) {
+    blob.status = DetectStatus::kNoPerson;
+    return blob;
+  }
+  FillBlob(grid, regions[best], best, &blob);
+  return blob;
+}
+
+bool PersonDetector::ReadDepthGrid(const ImageDepthMm& depth, PersonBlob* blob) const {
+  const int g = options_.grid_step_px;
+  const int gw = (depth.width + g - 1) / g, gh = (depth.height + g - 1) / g;
+  blob->grid_step_px = g;
+  blob->mask = ImageGray8(gw, gh, 1, 0);
+  blob->depth_m = Image<float>(gw, gh, 1, 0.f);
+  bool any = false;
+  for (int y = 0; y < gh; ++y)
+    for (int x = 0; x < gw; ++x) {
+      const double z = depth.at(x * g, y * g) * depth_scale_m_;
+      if (z >= options_.min_depth_m && z <= options_.max_depth_m && std::isfinite(z)) {
+        blob->depth_m.at(x, y) = static_cast<float>(z);
+        any = true;
+      }
+    }
+  return any;
+}
+
+PersonDetector::GridPoints PersonDetector::MarkCandidates(const PersonBlob& blob) {
   const Plane3 floor = *blob.floor_in_sensor;
   const PersonSegmentOptions& so = options_.segment;
-
-  // Candidates and their points.
-  const int n = gw * gh;
-  std::vector<Eigen::Vector3d> point(n);
-  std::vector<double> height(n, 0);
+  GridPoints grid;
+  grid.width = blob.depth_m.width;
+  grid.height = blob.depth_m.height;
+  grid.floor = floor;
+  grid.e1 = floor.normal.unitOrthogonal();
+  grid.e2 = floor.normal.cross(grid.e1);
+  const int g = blob.grid_step_px, gw = grid.width, n = gw * grid.height;
+  grid.point.resize(n);
+  grid.height_m.assign(n, 0);
   label_.assign(n, -1);  // -1: not a candidate, -2: candidate unlabelled, >= 0: region
-  for (int y = 0; y < gh; ++y)
+  for (int y = 0; y < grid.height; ++y)
     for (int x = 0; x < gw; ++x) {
       const double z = blob.depth_m.at(x, y);
       if (z <= 0) continue;
       const int i = y * gw + x;
-      point[i] = rays_.Point(x * g, y * g, z);
-      height[i] = floor.SignedDistance(point[i]);
-      if (OnOrUnderFloor(floor, point[i], so.floor_clearance) || height[i] > options_.max_height_m)
+      grid.point[i] = rays_.Point(x * g, y * g, z);
+      grid.height_m[i] = floor.SignedDistance(grid.point[i]);
+      if (OnOrUnderFloor(floor, grid.point[i], so.floor_clearance) ||
+          grid.height_m[i] > options_.max_height_m)
         continue;
       label_[i] = -2;
     }
+  return grid;
+}
 
-  // Horizontal axes of the floor frame.
-  const Eigen::Vector3d e1 = floor.normal.unitOrthogonal();
-  const Eigen::Vector3d e2 = floor.normal.cross(e1);
-  struct Region {
-    int pixels = 0;
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    double top = -1e9, bottom = 1e9, area = 0;
-    double min1 = 1e9, max1 = -1e9, min2 = 1e9, max2 = -1e9;
-    bool touches_bottom = false;
-  };
+std::vector<PersonDetector::Region> PersonDetector::GrowRegions(const GridPoints& grid) {
+  const int gw = grid.width, gh = grid.height, n = gw * gh;
+  const double slope = options_.grid_step_px / camera_.fx;
   std::vector<Region> regions;
-  const double slope = g / camera_.fx;
   for (int start = 0; start < n; ++start) {
     if (label_[start] != -2) continue;
     const int id = static_cast<int>(regions.size());
@@ -161,70 +177,72 @@ PersonBlob PersonDetector::Detect(const ImageDepthMm& depth,
     for (size_t q = 0; q < queue_.size(); ++q) {
       const int i = queue_[q];
       const int x = i % gw, y = i / gw;
-      const double z = point[i].z();
+      const double z = grid.point[i].z();
       ++r.pixels;
-      r.sum += point[i];
-      r.top = std::max(r.top, height[i]);
-      r.bottom = std::min(r.bottom, height[i]);
-      const double a = point[i].dot(e1), b = point[i].dot(e2);
+      r.sum += grid.point[i];
+      r.top = std::max(r.top, grid.height_m[i]);
+      r.bottom = std::min(r.bottom, grid.height_m[i]);
+      const double a = grid.point[i].dot(grid.e1), b = grid.point[i].dot(grid.e2);
       r.min1 = std::min(r.min1, a), r.max1 = std::max(r.max1, a);
       r.min2 = std::min(r.min2, b), r.max2 = std::max(r.max2, b);
       r.area += (slope * z) * (slope * z);
       r.touches_bottom |= y >= gh - 2;
-      const double tol = so.depth_step.At(z) + slope * z;
+      const double tol = options_.segment.depth_step.At(z) + slope * z;
       const int nx[4] = {x - 1, x + 1, x, x};
       const int ny[4] = {y, y, y - 1, y + 1};
       for (int k = 0; k < 4; ++k) {
         if (nx[k] < 0 || ny[k] < 0 || nx[k] >= gw || ny[k] >= gh) continue;
         const int j = ny[k] * gw + nx[k];
-        if (label_[j] != -2 || std::abs(point[j].z() - z) > tol) continue;
+        if (label_[j] != -2 || std::abs(grid.point[j].z() - z) > tol) continue;
         label_[j] = id;
         queue_.push_back(j);
       }
     }
     regions.push_back(r);
   }
+  return regions;
+}
 
-  // Merging across small depth gaps, smallest first, while the union stays human-sized.
-  struct Contact {
-    double gap;
-    int a, b;
-  };
-  std::vector<Contact> contacts;
-  const double merge_step =
-      previous_centroid ? options_.tracking_merge_step_m : options_.merge_step_m;
-  {
-    std::unordered_map<uint64_t, double> gaps;
-    for (int y = 0; y < gh; ++y)
-      for (int x = 0; x < gw; ++x) {
-        const int i = y * gw + x;
-        if (label_[i] < 0) continue;
-        for (const int j : {x + 1 < gw ? i + 1 : -1, y + 1 < gh ? i + gw : -1}) {
-          if (j < 0 || label_[j] < 0 || label_[j] == label_[i]) continue;
-          const double gap = std::abs(point[i].z() - point[j].z());
-          if (gap > merge_step) continue;
-          const uint64_t a = std::min(label_[i], label_[j]), b = std::max(label_[i], label_[j]);
-          auto [it, inserted] = gaps.emplace((a << 32) | b, gap);
-          if (!inserted) it->second = std::min(it->second, gap);
-        }
+std::vector<PersonDetector::Contact> PersonDetector::RegionContacts(const GridPoints& grid,
+                                                                    double merge_step) const {
+  const int gw = grid.width, gh = grid.height;
+  std::unordered_map<uint64_t, double> gaps;
+  for (int y = 0; y < gh; ++y)
+    for (int x = 0; x < gw; ++x) {
+      const int i = y * gw + x;
+      if (label_[i] < 0) continue;
+      for (const int j : {x + 1 < gw ? i + 1 : -1, y + 1 < gh ? i + gw : -1}) {
+        if (j < 0 || label_[j] < 0 || label_[j] == label_[i]) continue;
+        const double gap = std::abs(grid.point[i].z() - grid.point[j].z());
+        if (gap > merge_step) continue;
+        const uint64_t a = std::min(label_[i], label_[j]), b = std::max(label_[i], label_[j]);
+        auto [it, inserted] = gaps.emplace((a << 32) | b, gap);
+        if (!inserted) it->second = std::min(it->second, gap);
       }
-    for (const auto& [key, gap] : gaps)
-      contacts.push_back({gap, static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu)});
-    std::sort(contacts.begin(), contacts.end(), [](const Contact& l, const Contact& r) {
-      return l.gap < r.gap || (l.gap == r.gap && (l.a < r.a || (l.a == r.a && l.b < r.b)));
-    });
-  }
-  std::vector<int> parent(regions.size());
-  for (size_t id = 0; id < regions.size(); ++id) parent[id] = static_cast<int>(id);
+    }
+  std::vector<Contact> contacts;
+  for (const auto& [key, gap] : gaps)
+    contacts.push_back({gap, static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu)});
+  std::sort(contacts.begin(), contacts.end(), [](const Contact& l, const Contact& r) {
+    return l.gap < r.gap || (l.gap == r.gap && (l.a < r.a || (l.a == r.a && l.b < r.b)));
+  });
+  return contacts;
+}
+
+std::vector<int> PersonDetector::MergeRegions(const GridPoints& grid, double merge_step,
+                                              std::vector<Region>* regions) {
+  std::vector<Region>& rs = *regions;
+  std::vector<int> parent(rs.size());
+  for (size_t id = 0; id < rs.size(); ++id) parent[id] = static_cast<int>(id);
   const auto find = [&](int id) {
     while (parent[id] != id) id = parent[id] = parent[parent[id]];
     return id;
   };
-  for (const Contact& c : contacts) {
+  for (const Contact& c : RegionContacts(grid, merge_step)) {
     const int a = find(c.a), b = find(c.b);
     if (a == b) continue;
-    Region u = regions[a];
-    const Region& r = regions[b];
+    Region u = rs[a];
+    const Region& r = rs[b];
     u.pixels += r.pixels;
     u.sum += r.sum;
     u.top = std::max(u.top, r.top), u.bottom = std::min(u.bottom, r.bottom);
@@ -235,23 +253,28 @@ PersonBlob PersonDetector::Detect(const ImageDepthMm& depth,
     if (std::hypot(u.max1 - u.min1, u.max2 - u.min2) > options_.max_extent_m ||
         u.area > options_.max_area_m2)
       continue;
-    regions[a] = u;
+    rs[a] = u;
     parent[b] = a;
   }
-  for (int i = 0; i < n; ++i)
-    if (label_[i] >= 0) label_[i] = find(label_[i]);
+  for (int& label : label_)
+    if (label >= 0) label = find(label);
+  return parent;
+}
 
+int PersonDetector::ChooseRegion(const GridPoints& grid, const std::vector<Region>& regions,
+                                 const std::vector<int>& parent,
+                                 const std::optional<Eigen::Vector3d>& previous_centroid,
+                                 PersonBlob* blob) const {
   // Width of each region's top 12 cm (the head, or raised hands).
   std::vector<double> tmin1(regions.size(), 1e9), tmax1(regions.size(), -1e9),
       tmin2(regions.size(), 1e9), tmax2(regions.size(), -1e9);
-  for (int i = 0; i < n; ++i) {
+  for (size_t i = 0; i < label_.size(); ++i) {
     const int id = label_[i];
-    if (id < 0 || height[i] < regions[id].top - 0.12) continue;
-    const double a = point[i].dot(e1), b = point[i].dot(e2);
+    if (id < 0 || grid.height_m[i] < regions[id].top - 0.12) continue;
+    const double a = grid.point[i].dot(grid.e1), b = grid.point[i].dot(grid.e2);
     tmin1[id] = std::min(tmin1[id], a), tmax1[id] = std::max(tmax1[id], a);
     tmin2[id] = std::min(tmin2[id], b), tmax2[id] = std::max(tmax2[id], b);
   }
-
   int best = -1;
   double best_score = -std::numeric_limits<double>::infinity();
   for (size_t id = 0; id < regions.size(); ++id) {
@@ -265,7 +288,7 @@ PersonBlob PersonDetector::Detect(const ImageDepthMm& depth,
                            r.area <= options_.max_area_m2 &&
                            (previous_centroid || top_width <= options_.max_top_width_m);
     if (!plausible) continue;
-    ++blob.plausible_regions;
+    ++blob->plausible_regions;
     const Eigen::Vector3d centroid = r.sum / r.pixels;
     double score = r.area;
     if (previous_centroid) {
@@ -275,25 +298,24 @@ PersonBlob PersonDetector::Detect(const ImageDepthMm& depth,
     }
     if (score > best_score) best_score = score, best = static_cast<int>(id);
   }
-  if (best < 0) {
-    blob.status = DetectStatus::kNoPerson;
-    return blob;
+  return best;
+}
+
+void PersonDetector::FillBlob(const GridPoints& grid, const Region& r, int id,
+                              PersonBlob* blob) const {
+  blob->status = DetectStatus::kOk;
+  blob->centroid = r.sum / r.pixels;
+  blob->top_height_m = r.top;
+  blob->bottom_height_m = r.bottom;
+  blob->area_m2 = r.area;
+  blob->points.reserve(r.pixels);
+  blob->pixels.reserve(r.pixels);
+  for (size_t i = 0; i < label_.size(); ++i) {
+    if (label_[i] != id) continue;
+    blob->mask.data[i] = 255;
+    blob->points.push_back(grid.point[i]);
+    blob->pixels.emplace_back(static_cast<int>(i) % grid.width, static_cast<int>(i) / grid.width);
   }
-  const Region& r = regions[best];
-  blob.status = DetectStatus::kOk;
-  blob.centroid = r.sum / r.pixels;
-  blob.top_height_m = r.top;
-  blob.bottom_height_m = r.bottom;
-  blob.area_m2 = r.area;
-  blob.points.reserve(r.pixels);
-  blob.pixels.reserve(r.pixels);
-  for (int i = 0; i < n; ++i) {
-    if (label_[i] != best) continue;
-    blob.mask.data[i] = 255;
-    blob.points.push_back(point[i]);
-    blob.pixels.emplace_back(i % gw, i / gw);
-  }
-  return blob;
 }
 
 }  // namespace reenact::capture

@@ -109,6 +109,45 @@ class PersonDetector {
                                     const std::optional<Eigen::Isometry3d>& world_from_sensor,
                                     bool* refitted);
 
+  // The depth grid's points, their height above the floor and the floor's horizontal axes.
+  struct GridPoints {
+    int width = 0, height = 0;
+    Plane3 floor;
+    Eigen::Vector3d e1, e2;
+    std::vector<Eigen::Vector3d> point;
+    std::vector<double> height_m;
+  };
+  // A connected region of candidates: its size, extent across the floor and height range.
+  struct Region {
+    int pixels = 0;
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double top = -1e9, bottom = 1e9, area = 0;
+    double min1 = 1e9, max1 = -1e9, min2 = 1e9, max2 = -1e9;
+    bool touches_bottom = false;
+  };
+  // Two regions' smallest depth gap where they touch.
+  struct Contact {
+    double gap;
+    int a, b;
+  };
+  // The grid's readings within range into blob (size, depth); false when there are none.
+  bool ReadDepthGrid(const ImageDepthMm& depth, PersonBlob* blob) const;
+  // Points and heights of the grid; label_ marks the candidates (above the floor, not too high).
+  GridPoints MarkCandidates(const PersonBlob& blob);
+  // Regions grown across depth steps of the segmentation's depth_step (label_ set to them).
+  std::vector<Region> GrowRegions(const GridPoints& grid);
+  // Touching regions within merge_step of each other, smallest gap first.
+  std::vector<Contact> RegionContacts(const GridPoints& grid, double merge_step) const;
+  // Merges across the contacts while the union stays human-sized; returns each region's
+  // parent (itself for a merged region's root), label_ set to the roots.
+  std::vector<int> MergeRegions(const GridPoints& grid, double merge_step,
+                                std::vector<Region>* regions);
+  // The plausible person region (the largest, or the nearest to previous_centroid), -1: none.
+  int ChooseRegion(const GridPoints& grid, const std::vector<Region>& regions,
+                   const std::vector<int>& parent,
+                   const std::optional<Eigen::Vector3d>& previous_centroid, PersonBlob* blob) const;
+  void FillBlob(const GridPoints& grid, const Region& r, int id, PersonBlob* blob) const;
+
   struct CachedFloor {
     Plane3 plane;
     bool in_world = false;

@@ -1,6 +1,6 @@
 #pragma once
 // Joint error by the tracker's reported confidence, for `reenact-eval tracker`'s
-// "confidence" table: does the per-joint confidence (skeleton_tracker.h) tell the joints the
+// "confidence" table: does the per-joint confidence (joint_confidence.h) tell the joints the
 // tracker places well from those it cannot see (hidden by the body, beyond the image's
 // edge)? A consumer that trusts confident joints and discounts the others needs the error to
 // fall as the confidence rises.

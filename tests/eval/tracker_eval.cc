@@ -17,6 +17,7 @@
 #include "tests/eval/body_heading.h"
 #include "tests/eval/calibration_aligned_error.h"
 #include "tests/eval/quality_cli.h"
+#include "tests/eval/tracker_experiment.h"
 
 namespace reenact::eval {
 namespace {
@@ -42,12 +43,15 @@ constexpr std::array<std::string_view, 4> kVariantNames = {"normal", "fast", "ne
 bool IsVariant(const std::string& v) {
   return std::ranges::find(kVariantNames, v) != kVariantNames.end();
 }
-std::string VariantList() {
+// Names joined by ", ", for a usage error.
+template <typename Names>
+std::string NameList(const Names& names) {
   std::string list;
-  for (const std::string_view name : kVariantNames)
-    list += (list.empty() ? "" : ", ") + std::string(name);
+  for (const std::string_view name : names) list += (list.empty() ? "" : ", ") + std::string(name);
   return list;
 }
+std::string VariantList() { return NameList(kVariantNames); }
+std::string AblationList() { return NameList(TrackerAblations()); }
 
 // The drops variant: after each frame seen, the frames dropped before the next, 0-3 with these
 // probabilities (a mean of 0.6 dropped: 1.6 frame intervals between the frames seen).
@@ -138,9 +142,10 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
                                 ConfidenceErrorTable* confidence, LimbVisibilityTable* limbs,
                                 std::vector<TrackerFrameRow>* frames) {
   capture::SkeletonTrackerOptions to = o.tracker;
-  to.fit.iterations = iterations;
+  to.iterations = iterations;
   to.subsample = subsample;
-  capture::SkeletonTracker tracker(scene.sensor_camera(), 0.001, to);
+  capture::SkeletonTracker tracker(scene.sensor_camera(), 0.001, to,
+                                   ExperimentMethod(to, o.without));
   capture::SyntheticRenderOptions render;
   render.depth_noise = o.depth_noise;
   const int step = variant == "fast" ? 2 : 1;
@@ -229,7 +234,7 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
       else if (alignment)
         aligned_errors.push_back(Mpjpe(alignment->Aligned(*r.skeleton), truth));
       if (o.floor)
-        if (const auto oracle = tracker.FitLastFrameFrom(truth)) {
+        if (const auto oracle = FitLastFrameFrom(tracker, truth)) {
           floor_posed_errors.push_back(Mpjpe(oracle->posed, truth));
           floor_errors.push_back(Mpjpe(oracle->fitted, truth));
           frame.floor_mpjpe_cm = 100 * floor_errors.back();
@@ -487,11 +492,9 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
 }
 
 std::set<std::string> TrackerFlags() {
-  return {"scenario",     "variants",    "iterations",    "subsample",      "body",
-          "limb-recheck", "turn-starts", "noise",         "seeds",          "json",
-          "torso-depth",  "held-twists", "front-confirm", "uncross-return", "static-scene",
-          "sensor-pose",  "limb-jump",   "timestamps",    "trunk-breadth",  "hanging-arm",
-          "floor",        "frames"};
+  return {"scenario",    "variants", "iterations", "subsample",  "body",
+          "turn-starts", "without",  "noise",      "seeds",      "json",
+          "floor",       "frames",   "timestamps", "sensor-pose"};
 }
 
 namespace {
@@ -571,6 +574,8 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
   if (auto text = cl.Get("iterations")) {
     auto list = ParseCounts("iterations", *text);
     if (!list.ok()) return list.error();
+    if (std::ranges::any_of(*list, [](int n) { return n > 100; }))
+      return MakeError("usage", "--iterations: at most 100, got '" + *text + "'");
     o.iterations = *list;
   }
   if (auto text = cl.Get("subsample")) {
@@ -584,37 +589,24 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
     o.body_path = *body == "procedural" ? "" : *body;
     o.body_for_all = true;
   }
-  if (auto text = cl.Get("limb-recheck")) {
-    auto value = ParseSetting("limb-recheck", *text, 26);
-    if (!value.ok()) return value.error();
-    o.tracker.limb_recheck_hypotheses = *value;
-  }
   if (auto text = cl.Get("turn-starts")) {
     auto value = ParseSetting("turn-starts", *text, 89);
     if (!value.ok()) return value.error();
     o.tracker.turn_start_deg = *value;
   }
-  if (auto text = cl.Get("held-twists")) {
-    auto value = ParseSetting("held-twists", *text, 36);
-    if (!value.ok()) return value.error();
-    o.tracker.limb_search.held_twists = *value;
-  }
-  if (auto text = cl.Get("hanging-arm")) {
-    auto on = ParseOnOff("hanging-arm", *text);
-    if (!on.ok()) return on.error();
-    o.tracker.hanging_arm.min_support = *on ? capture::HangingArmOptions{}.min_support : 0;
-  }
-  if (auto text = cl.Get("front-confirm")) {
-    auto value = ParseSetting("front-confirm", *text, 30);
-    if (!value.ok()) return value.error();
-    o.tracker.front_check_confirm_frames = *value;
+  if (auto text = cl.Get("without")) {
+    auto list = ParseList("without", *text);
+    if (!list.ok()) return list.error();
+    const auto& known = TrackerAblations();
+    for (const std::string& name : *list) {
+      if (std::find(known.begin(), known.end(), name) == known.end())
+        return MakeError("usage",
+                         "--without: unknown part '" + name + "' (" + AblationList() + ")");
+      o.without.insert(name);
+    }
   }
   for (const auto& [flag, value] :
-       {std::pair{"uncross-return", &o.tracker.uncross_returns_limb},
-        std::pair{"static-scene", &o.tracker.static_scene.enabled},
-        std::pair{"limb-jump", &o.tracker.turn_start_jump_check},
-        std::pair{"trunk-breadth", &o.tracker.calibration.fit_trunk_breadth},
-        std::pair{"timestamps", &o.timestamps}, std::pair{"noise", &o.depth_noise},
+       {std::pair{"timestamps", &o.timestamps}, std::pair{"noise", &o.depth_noise},
         std::pair{"floor", &o.floor}, std::pair{"frames", &o.frames}})
     if (auto text = cl.Get(flag)) {
       auto on = ParseOnOff(flag, *text);
@@ -625,13 +617,6 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
     if (*pose != "truth" && *pose != "slam")
       return MakeError("usage", "--sensor-pose must be truth or slam, got '" + *pose + "'");
     o.slam_poses = *pose == "slam";
-  }
-  if (auto depth = cl.Get("torso-depth")) {
-    if (*depth != "off" && *depth != "calibrated" && *depth != "always")
-      return MakeError("usage",
-                       "--torso-depth must be off, calibrated or always, got '" + *depth + "'");
-    o.tracker.measure_torso_depth = *depth != "off";
-    o.tracker.measure_torso_depth_uncalibrated = *depth == "always";
   }
   if (auto text = cl.Get("seeds")) {
     auto list = ParseCounts("seeds", *text);

@@ -4,9 +4,7 @@
 //
 //   reenact-eval tracker [--scenario S[,S...]] [--variants V[,V...]] [--iterations N[,N...]]
 //                        [--subsample K[,K...]] [--body FILE.glb|procedural]
-//                        [--limb-recheck N] [--turn-starts DEG] [--held-twists N]
-//                        [--front-confirm N] [--uncross-return on|off]
-//                        [--static-scene on|off] [--limb-jump on|off] [--noise on|off]
+//                        [--turn-starts DEG] [--without PART[,PART...]] [--noise on|off]
 //                        [--sensor-pose truth|slam] [--timestamps on|off] [--floor on|off]
 //                        [--frames on|off] [--seeds N[,N...]] [--json FILE]
 //
@@ -14,23 +12,12 @@
 // noise (and walk-handheld's hand shake), and a tracker fits every frame from the last one,
 // so a change that moves one frame's fit by a little can send a whole row another way; the
 // mean over seeds tells a change's effect from that chance.
-// --limb-recheck N: the tracker's limb re-check with N hypotheses, 0 = off
-// (SkeletonTrackerOptions::limb_recheck_hypotheses, default 0; see docs/measurements.md).
 // --turn-starts DEG: the tracker's turned starts, +-DEG degrees about up, 0 = off
 // (SkeletonTrackerOptions::turn_start_deg, default 25).
-// --held-twists N: the limb search's hypotheses with the upper segment held, its hinge's plane
-// turned in N steps, 0 = off (LimbSearchOptions::held_twists, default 8).
-// --front-confirm N: the frames a front check's turned fit is followed at most before it is
-// taken, 0 = taken on its own frame (SkeletonTrackerOptions::front_check_confirm_frames,
-// default 5).
-// --uncross-return on|off: where the fit newly crossed the arms, also a start from each arm
-// back at its predicted angles and the other reaching its end
-// (SkeletonTrackerOptions::uncross_returns_limb, default on; off: the swap alone).
-// --static-scene on|off: the static scene learned beside the person while tracking, its
-// points dropped before the fit (SkeletonTrackerOptions::static_scene, static_scene_voxels.h;
-// default on; it needs the sensor's pose).
-// --limb-jump on|off: a turned start's fit refused where a limb jumped from its data
-// (SkeletonTrackerOptions::turn_start_jump_check, limb_jump.h; default on).
+// --without PART[,PART...]: the tracker's method without these steps or parts of steps
+// (tracker_experiment.h lists them: turned-starts, limb-jump, uncross-arms, uncross-legs,
+// uncross-return, front-check, front-confirm, travel-heading, limb-search, held-twists,
+// static-scene, trunk-breadth, torso-depth); default: the product's method.
 // --timestamps on|off: each frame's time given to the tracker (default on), which scales its
 // prediction by the gap since the last frame (SkeletonTrackerOptions::max_gap_ratio); off:
 // every frame taken as one interval after the last, as before timestamps were passed.
@@ -44,14 +31,14 @@
 // --floor on|off: the body model's floor beside the track (default off; one fit more a frame,
 // outside the timing): on every tracked frame but the track's start (its calibration), the
 // tracker's body as it is then is posed from the ground truth's skeleton and fitted to that
-// frame's observation (SkeletonTracker::FitLastFrameFrom), as if the track had never lost
+// frame's observation (tracker_experiment.h's FitLastFrameFrom), as if the track had never lost
 // anything.
 // floor_posed_mpjpe_cm is that pose's mean 16-joint error before the fit (the body's
 // proportions and its joint placement against the truth's rig), floor_mpjpe_cm after it (what
 // the data and this model give near the truth): a row near its floor is the model's, a row
 // far above it the tracking's, unless the cost prefers the track's pose. floor_cheaper_rate:
 // the share of those frames on which that fit costs less than the fit the track kept
-// (SkeletonTracker::OracleFit's costs, on the same observation): a minimum the track's search
+// (OracleFit's costs, on the same observation): a minimum the track's search
 // missed; where the rate is low, the data and the model prefer the track's pose, and the
 // distance above the floor is the model's as well. Means and shares over those frames;
 // written only with --floor on.
@@ -162,6 +149,7 @@ struct TrackerEvalOptions {
   // One row per frame (--frames; see the header comment).
   bool frames = false;
   capture::SkeletonTrackerOptions tracker;
+  std::set<std::string> without;  // ablations (tracker_experiment.h)
 };
 
 struct TrackerEvalRow {
@@ -270,8 +258,8 @@ std::set<std::string> TrackerFlags();
 
 // --body procedural: every scenario on the procedural body (body_path empty, body_for_all).
 // Errors (code "usage", naming the flag): empty lists or names, numbers that are not whole
-// numbers >= 1, an unknown variant, --limb-recheck other than one number from 0 to 26,
-// --turn-starts other than one number from 0 to 89, --noise other than on or off, --seeds
+// numbers >= 1, an unknown variant, an unknown --without part, --turn-starts other than one
+// number from 0 to 89, --noise other than on or off, --seeds
 // other than whole numbers from 1 to 1000 without repeats; ("io") an unwritable --json.
 Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& command_line);
 

@@ -78,33 +78,6 @@ TEST(ArticulatedBody, PoseFromSkeletonReproducesAPosedSkeleton) {
   EXPECT_LT(MeanJointError(target, again), 1e-6);
 }
 
-TEST(ArticulatedBody, ArmTrunkDepthTellsAnArmAtTheSideFromAnArmThroughTheChest) {
-  const BodyShape shape = BodyShape::FromHeight(1.75);
-  const ArticulatedBody body(shape);
-  ArticulatedPose pose;  // the rest pose: arms hanging straight down at the sides
-  // Each hanging arm's axis runs shoulder_half_width from the spine, the trunk capsules' axes
-  // torso_half_spread to either side of it: depth = radius - the gap between the axes.
-  const double side = shape.torso_radius - (shape.shoulder_half_width - shape.torso_half_spread);
-  ASSERT_LT(side, 0);
-  EXPECT_NEAR(ArmTrunkDepth(body, body.Pose(pose), Limb::kLeftArm), side, 1e-9);
-  EXPECT_NEAR(ArmTrunkDepth(body, body.Pose(pose), Limb::kRightArm), side, 1e-9);
-  EXPECT_EQ(ArmTrunkDepth(body, body.Pose(pose), Limb::kLeftLeg), 0);
-  EXPECT_EQ(ArmTrunkDepth(body, body.Pose(pose), Limb::kRightLeg), 0);
-  // The left upper arm pointing straight across to the right: at shoulder height it passes
-  // shoulder_drop - torso_radius above the chest capsules' top ends, i.e. shoulder_drop deep
-  // where it crosses their axes (axis samples every eighth of the bone: within half of that).
-  pose.local[static_cast<int>(BodySegment::kLeftUpperArm)] =
-      ExpRotation(Eigen::Vector3d(-kPi / 2, 0, 0));
-  const double across = ArmTrunkDepth(body, body.Pose(pose), Limb::kLeftArm);
-  EXPECT_GT(across, 0.5 * shape.shoulder_drop);
-  EXPECT_LE(across, shape.shoulder_drop + 1e-9);
-  // The right arm is where it was; and the depth does not depend on where the body stands.
-  EXPECT_NEAR(ArmTrunkDepth(body, body.Pose(pose), Limb::kRightArm), side, 1e-9);
-  pose.root_translation = Eigen::Vector3d(0.4, -0.2, 3.1);
-  pose.root_rotation = ExpRotation(Eigen::Vector3d(0.3, -1.2, 0.5));
-  EXPECT_NEAR(ArmTrunkDepth(body, body.Pose(pose), Limb::kLeftArm), across, 1e-9);
-}
-
 TEST(ArticulatedBody, StepsAreClampedToTheJointLimits) {
   const ArticulatedBody body(BodyShape::FromHeight(1.7));
   const ArticulatedPose pose;
@@ -407,62 +380,6 @@ TEST(LimbSearch, HypothesesAreWithinTheLimitsAndDistinctPerDirection) {
   EXPECT_EQ(LimbHypotheses(pose, Limb::kLeftArm, JointLimits{}, {.held_twists = 0}).size(), 26 * 9);
   EXPECT_THROW(LimbHypotheses(pose, Limb::kLeftArm, JointLimits{}, {.held_twists = -1}),
                CheckError);
-}
-
-TEST(LimbSearch, RankedHypothesesBringBackAnArmFromTheWrongSideOfTheBody) {
-  const ArticulatedBody body(BodyShape::FromHeight(1.75));
-  ArticulatedPose truth = SomePose();
-  const int arm = static_cast<int>(BodySegment::kLeftUpperArm);
-  const int forearm = static_cast<int>(BodySegment::kLeftForearm);
-  truth.local[arm] = ExpRotation(Eigen::Vector3d(0.15, 0.1, 0));  // hanging at the side
-  truth.hinge_angle[forearm] = 0.3;
-  // The start: the arm across the body, reaching to the other side.
-  ArticulatedPose start = truth;
-  start.local[arm] = ExpRotation(Eigen::Vector3d(-1.0, -0.3, 0));
-  start.hinge_angle[forearm] = 1.2;
-  const BodyObservation obs = SurfaceObservation(body, truth);
-  BodyFitOptions options;
-  options.silhouette_weight = 0;  // points only
-  const auto hand_error = LeftHandError(body, truth);
-  const BodyFitResult local = FitBody(body, start, obs, options);
-  EXPECT_GT(hand_error(local.pose), 0.3);  // the local fit alone does not bring it back
-
-  const std::vector<ArticulatedPose> ranked = RankLimbHypotheses(
-      body, obs, options, JointLimits{}, LimbSearchOptions{}, local.pose, Limb::kLeftArm, 3);
-  ASSERT_EQ(ranked.size(), 3u);
-  std::vector<Eigen::Vector3d> directions;
-  for (const ArticulatedPose& r : ranked) {
-    // Only the left arm is re-posed, each hypothesis along another direction.
-    for (int s = 0; s < kBodySegmentCount; ++s) {
-      if (s == arm || s == forearm) continue;
-      EXPECT_LT((r.local[s] - local.pose.local[s]).norm(), 1e-12);
-      EXPECT_EQ(r.hinge_angle[s], local.pose.hinge_angle[s]);
-    }
-    const Eigen::Vector3d d = r.local[arm].col(2);
-    for (const Eigen::Vector3d& e : directions) EXPECT_LT(d.dot(e), 1 - 1e-9);
-    directions.push_back(d);
-  }
-  // Exact data: a fit from the nearest hypothesis (at most 22.5 degrees off along the bone,
-  // 30 at the elbow) converges to the truth, and costs far less than the local fit (the
-  // tracker's re-check asks for 10 % less).
-  BodyFitOptions converge = options;
-  converge.iterations = 30;
-  double best_hand = 1e9, best_cost = 1e9;
-  for (const ArticulatedPose& r : ranked) {
-    const BodyFitResult f = FitBody(body, r, obs, converge);
-    if (f.cost < best_cost) best_cost = f.cost, best_hand = hand_error(f.pose);
-  }
-  EXPECT_LT(best_hand, 0.01);
-  EXPECT_LT(best_cost, 0.9 * local.cost);
-
-  EXPECT_TRUE(RankLimbHypotheses(body, obs, options, JointLimits{}, LimbSearchOptions{}, local.pose,
-                                 Limb::kLeftArm, 0)
-                  .empty());
-  BodyObservation empty;
-  empty.camera = obs.camera;
-  EXPECT_TRUE(RankLimbHypotheses(body, empty, options, JointLimits{}, LimbSearchOptions{},
-                                 local.pose, Limb::kLeftArm, 3)
-                  .empty());
 }
 
 TEST(BodyFit, KeepPointsNearBodyDropsAnotherObject) {

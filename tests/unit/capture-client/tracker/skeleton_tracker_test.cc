@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <initializer_list>
 #include <numeric>
 #include <optional>
@@ -14,6 +15,10 @@
 
 #include "capture-client/slam/rgbd_slam.h"
 #include "capture-client/synthetic/synthetic_scene.h"
+#include "capture-client/tracker/front_check_step.h"
+#include "capture-client/tracker/travel_heading_step.h"
+#include "capture-client/tracker/turned_starts_step.h"
+#include "capture-client/tracker/uncross_step.h"
 #include "common/error/check.h"
 #include "tests/unit/capture-client/tracker/tracker_test_scenes.h"
 
@@ -45,6 +50,33 @@ double MaxJointError(const Skeleton& a, const Skeleton& b) {
   double m = 0;
   for (int j = 0; j < kJointCount; ++j) m = std::max(m, (a.position[j] - b.position[j]).norm());
   return m;
+}
+
+// A tracker's options and a change to its method, as an experiment makes one
+// (tracker_method.h).
+struct TrackerSetup {
+  TrackerSetup(SkeletonTrackerOptions o = {}, std::function<void(TrackerMethod&)> c = {})
+      : options(o), change(std::move(c)) {}
+  SkeletonTrackerOptions options;
+  std::function<void(TrackerMethod&)> change;
+
+  SkeletonTracker Make(const PinholeCamera& camera) const {
+    TrackerMethod method = DefaultTrackerMethod(options);
+    if (change) change(method);
+    return SkeletonTracker(camera, 0.001, options, std::move(method));
+  }
+};
+
+// A method's step `name` replaced by `step` (it must be there) or, without one, removed.
+void ReplaceStep(TrackerMethod& method, std::string_view name,
+                 std::unique_ptr<CorrectionStep> step = nullptr) {
+  const auto it = std::find_if(method.steps.begin(), method.steps.end(),
+                               [&](const auto& s) { return s->name() == name; });
+  ASSERT_NE(it, method.steps.end()) << name;
+  if (step)
+    *it = std::move(step);
+  else
+    method.steps.erase(it);
 }
 
 TrackFrameResult TrackFrame(SkeletonTracker* tracker, int frame) {
@@ -142,39 +174,26 @@ TEST(SkeletonTracker, MeasuresTheTrunksDepthOnceTheSubjectTurnsSideOn) {
   EXPECT_NEAR(measured.torso_radius + measured.torso_half_spread, half_breadth, 1e-12);
   EXPECT_EQ(measured.PartLengths(), calibrated.PartLengths());
   // With the measurement off the calibration's depth stays.
-  SkeletonTrackerOptions off;
-  off.measure_torso_depth = false;
-  SkeletonTracker fixed(Scene().sensor_camera(), 0.001, off);
+  SkeletonTracker fixed = TrackerSetup({}, [](TrackerMethod& m) {
+                            m.measurement.measure_torso_depth = false;
+                          }).Make(Scene().sensor_camera());
   for (int f = 0; f < 75; ++f) TrackFrame(&fixed, f);
   EXPECT_EQ(fixed.calibration()->shape.torso_radius, calibrated.torso_radius);
 }
 
-TEST(SkeletonTracker, MeasuresAnUncalibratedTrunksDepthOnlyWhenAskedTo) {
+TEST(SkeletonTracker, KeepsAnUncalibratedTrunksDepth) {
   // Joining turn-and-kick at frame 30, arms down, the tracker starts without the calibration
   // pose after 15 frames, with the proportional body's depth, and the turn shows the trunk
-  // side-on at frames 54-64. By default such a body keeps its depth (skeleton_tracker.h);
-  // with measure_torso_depth_uncalibrated it takes the measured one, within the bounds of the
-  // calibrated test above.
-  SkeletonTrackerOptions measure;
-  measure.measure_torso_depth_uncalibrated = true;
-  for (const bool uncalibrated : {false, true}) {
-    SkeletonTracker tracker(Scene().sensor_camera(), 0.001,
-                            uncalibrated ? measure : SkeletonTrackerOptions{});
-    std::optional<double> start_radius;
-    for (int f = 30; f < 75; ++f)
-      if (TrackFrame(&tracker, f).calibrated)
-        start_radius = tracker.calibration()->shape.torso_radius;
-    ASSERT_TRUE(start_radius) << uncalibrated;
-    ASSERT_FALSE(tracker.calibration()->from_calibration_pose);
-    const double radius = tracker.calibration()->shape.torso_radius;
-    if (uncalibrated) {
-      EXPECT_NE(radius, *start_radius);  // measured (the proportions give 0.057 H = 0.100)
-      EXPECT_GT(radius, 0.094);
-      EXPECT_LT(radius, 0.133);
-    } else {
-      EXPECT_EQ(radius, *start_radius);
-    }
-  }
+  // side-on at frames 54-64. Such a body has no measured breadth, and keeps its depth
+  // (body_measurement.h).
+  SkeletonTracker tracker(Scene().sensor_camera(), 0.001);
+  std::optional<double> start_radius;
+  for (int f = 30; f < 75; ++f)
+    if (TrackFrame(&tracker, f).calibrated)
+      start_radius = tracker.calibration()->shape.torso_radius;
+  ASSERT_TRUE(start_radius);
+  ASSERT_FALSE(tracker.calibration()->from_calibration_pose);
+  EXPECT_EQ(tracker.calibration()->shape.torso_radius, *start_radius);
 }
 
 TEST(SkeletonTracker, AnArmHiddenBehindTheBodyHasLowerConfidence) {
@@ -284,38 +303,52 @@ TEST(SkeletonTracker, StartsWithAverageProportionsWithoutTheCalibrationPose) {
 TEST(SkeletonTracker, BadInputIsABug) {
   SkeletonTracker tracker(Scene().sensor_camera(), 0.001);
   EXPECT_THROW(tracker.Track(ImageDepthMm(64, 48, 1, 0)), CheckError);
+  const auto throws = [](const TrackerSetup& setup) {
+    EXPECT_THROW(setup.Make(Scene().sensor_camera()), CheckError);
+  };
   SkeletonTrackerOptions bad;
   bad.subsample = 0;
-  EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
-  bad = {};
-  bad.uncross_gain = 1;
-  EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
-  bad = {};
-  bad.limb_search_gain = 1;
-  EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
-  bad = {};
-  bad.static_scene.voxel_m = 0;
-  EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
-  bad = {};
-  bad.travel.min_half_share = 0.6;
-  EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
+  throws(bad);
   for (const double deg : {-1.0, 90.0}) {
     bad = {};
     bad.turn_start_deg = deg;
-    EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
+    throws(bad);
   }
   bad = {};
-  bad.turn_start_jump.kept_share = 2;
-  EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
+  bad.iterations = 0;
+  throws(bad);
   bad = {};
-  bad.front_check_every = 0;
-  EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
+  bad.min_depth_m = bad.max_depth_m;
+  throws(bad);
   bad = {};
-  bad.front_check_gain = 1;
-  EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
-  bad = {};
-  bad.front_check_confirm_frames = -1;
-  EXPECT_THROW(SkeletonTracker(Scene().sensor_camera(), 0.001, bad), CheckError);
+  bad.start_without_calibration_after = -2;
+  throws(bad);
+  throws({{}, [](TrackerMethod& m) { m.fitter.limb_search_gain = 1; }});
+  throws({{}, [](TrackerMethod& m) { m.static_scene.voxel_m = 0; }});
+  throws({{}, [](TrackerMethod& m) { m.steps.push_back(nullptr); }});
+  UncrossOptions uncross;
+  uncross.gain = 1;
+  EXPECT_THROW(UncrossStep(kArms, uncross), CheckError);
+  for (const double deg : {0.0, 90.0}) {
+    TurnedStartsOptions turned;
+    turned.turn_deg = deg;
+    EXPECT_THROW(TurnedStartsStep{turned}, CheckError);
+  }
+  TurnedStartsOptions jump;
+  jump.limb_jump.kept_share = 2;
+  EXPECT_THROW(TurnedStartsStep{jump}, CheckError);
+  FrontCheckOptions front;
+  front.every = 0;
+  EXPECT_THROW(FrontCheckStep{front}, CheckError);
+  front = {};
+  front.gain = 1;
+  EXPECT_THROW(FrontCheckStep{front}, CheckError);
+  front = {};
+  front.confirm_frames = -1;
+  EXPECT_THROW(FrontCheckStep{front}, CheckError);
+  TravelHeadingOptions travel;
+  travel.travel.min_half_share = 0.6;
+  EXPECT_THROW(TravelHeadingStep{travel}, CheckError);
 }
 
 // The body's heading about the world's up from a skeleton (sensor frame), radians.
@@ -375,9 +408,9 @@ enum class GivenPose {
 // [first, end): the track's skeleton, the ground truth and the world's up, all in the sensor
 // frame. A frame without a skeleton fails the test.
 template <typename Visit>
-void TrackFrames(const SyntheticScene& scene, const SkeletonTrackerOptions& options, int first,
-                 int end, Visit visit, int step = 1, GivenPose given = GivenPose::kTruth) {
-  SkeletonTracker tracker(scene.sensor_camera(), 0.001, options);
+void TrackFrames(const SyntheticScene& scene, const TrackerSetup& setup, int first, int end,
+                 Visit visit, int step = 1, GivenPose given = GivenPose::kTruth) {
+  SkeletonTracker tracker = setup.Make(scene.sensor_camera());
   SyntheticRenderOptions render;
   render.depth_noise = true;
   std::optional<slam::RgbdSlam> slam;
@@ -418,22 +451,22 @@ const SyntheticScene& CesiumWalk() {
 
 // Heading errors (radians, HeadingError) of the track of CesiumWalk() from its first frame,
 // on frames [first, end).
-std::vector<double> CesiumWalkHeadingErrors(const SkeletonTrackerOptions& options, int first,
-                                            int end) {
+std::vector<double> CesiumWalkHeadingErrors(const TrackerSetup& setup, int first, int end) {
   std::vector<double> errors;
-  TrackFrames(CesiumWalk(), options, first, end,
+  TrackFrames(CesiumWalk(), setup, first, end,
               [&](const Skeleton& track, const Skeleton& truth, const Eigen::Vector3d& up) {
                 errors.push_back(HeadingError(track, truth, up));
               });
   return errors;
 }
 
-// Options whose start without the calibration pose keeps the average head (head_size.h's
-// measurement clamped to scale 1).
-SkeletonTrackerOptions AverageHead() {
-  SkeletonTrackerOptions options;
-  options.calibration.min_head_scale = options.calibration.max_head_scale = 1;
-  return options;
+// A method whose start without the calibration pose keeps the average head (head_size.h's
+// measurement clamped to scale 1), and `change` on top.
+TrackerSetup AverageHead(std::function<void(TrackerMethod&)> change = {}) {
+  return TrackerSetup({}, [change](TrackerMethod& m) {
+    m.calibration.min_head_scale = m.calibration.max_head_scale = 1;
+    if (change) change(m);
+  });
 }
 
 TEST(SkeletonTracker, StartsWithTheMeasuredHeadWithoutTheCalibrationPose) {
@@ -445,8 +478,8 @@ TEST(SkeletonTracker, StartsWithTheMeasuredHeadWithoutTheCalibrationPose) {
   // too high; the measured head takes most of that out. Bounds: the head scaled by more than 1.3;
   // the neck's mean height error (along up, frames 15-40 after the start at frame 14) lower by more
   // than 6 cm, 60 % of the 10 cm.
-  const auto neck_rise = [](const SkeletonTrackerOptions& options, double* head_scale) {
-    SkeletonTracker tracker(CesiumWalk().sensor_camera(), 0.001, options);
+  const auto neck_rise = [](const TrackerSetup& setup, double* head_scale) {
+    SkeletonTracker tracker = setup.Make(CesiumWalk().sensor_camera());
     SyntheticRenderOptions render;
     render.depth_noise = true;
     double rise = 0;
@@ -471,7 +504,7 @@ TEST(SkeletonTracker, StartsWithTheMeasuredHeadWithoutTheCalibrationPose) {
     return n > 0 ? rise / n : 0.0;
   };
   double measured_scale = 0, average_scale = 0;
-  const double measured = neck_rise(SkeletonTrackerOptions{}, &measured_scale);
+  const double measured = neck_rise(TrackerSetup{}, &measured_scale);
   const double average = neck_rise(AverageHead(), &average_scale);
   EXPECT_GT(measured_scale, 1.3);
   EXPECT_DOUBLE_EQ(average_scale, 1.0);
@@ -489,10 +522,10 @@ TEST(SkeletonTracker, ScalesTheLegsByTheCrotchMeasuredWhileWalking) {
   // here 0.95); the hips' mean height error over frames 45-60 at least 1 cm lower than with
   // the legs left at average length (min_crotch_frames out of reach), a third of the 3.7 cm
   // by which those legs are shorter (measured 18.4 -> 16.3 cm).
-  const auto hips_rise = [](const SkeletonTrackerOptions& options, double* leg_scale) {
+  const auto hips_rise = [](const TrackerSetup& setup, double* leg_scale) {
     double rise = 0;
     int n = 0;
-    SkeletonTracker tracker(CesiumWalk().sensor_camera(), 0.001, options);
+    SkeletonTracker tracker = setup.Make(CesiumWalk().sensor_camera());
     SyntheticRenderOptions render;
     render.depth_noise = true;
     for (int f = 0; f <= 60; ++f) {
@@ -516,10 +549,9 @@ TEST(SkeletonTracker, ScalesTheLegsByTheCrotchMeasuredWhileWalking) {
     EXPECT_GT(n, 0);
     return n > 0 ? rise / n : 0.0;
   };
-  SkeletonTrackerOptions off;
-  off.min_crotch_frames = 1000;
+  const TrackerSetup off({}, [](TrackerMethod& m) { m.measurement.min_crotch_frames = 1000; });
   double scaled_legs = 0, average_legs = 0;
-  const double scaled = hips_rise(SkeletonTrackerOptions{}, &scaled_legs);
+  const double scaled = hips_rise(TrackerSetup{}, &scaled_legs);
   const double average = hips_rise(off, &average_legs);
   EXPECT_GT(scaled_legs, 0.8);
   EXPECT_LT(scaled_legs, 0.97);
@@ -535,20 +567,21 @@ TEST(SkeletonTracker, ChecksTheFrontOfAStartFromTheSilhouette) {
   // at frame 101 (measured: 141-177 degrees off through frames 14-40). The check at frame 19
   // (the 5th tracked frame) still finds the back cheaper; at frame 24, the subject starting
   // to walk, the body turned around costs 11 % less (0.156 against 0.174). Taken on its own
-  // frame (front_check_confirm_frames 0), the track faces the right way from there (measured:
+  // frame (the front check's confirm_frames 0), the track faces the right way from there (measured:
   // 10-36 degrees off on frames 24-40).
   // Bounds: backwards is beyond 120 degrees on every frame, the right way round within 60 (the
   // capsule body's heading on CesiumMan is 20-47 degrees off through this walk;
   // docs/measurements.md).
   // The body keeps the average head here: with the head measured (the test above) the start
   // on this walk already faces the right way, and the check is for the starts that do not.
-  SkeletonTrackerOptions without = AverageHead();
-  without.front_check_frames = 0;
+  const TrackerSetup without = AverageHead([](TrackerMethod& m) { ReplaceStep(m, "front-check"); });
   for (const double e : CesiumWalkHeadingErrors(without, 25, 41)) EXPECT_GT(e * 180 / M_PI, 120.0);
-  SkeletonTrackerOptions at_once = AverageHead();
-  at_once.front_check_confirm_frames = 0;
+  const TrackerSetup at_once = AverageHead([](TrackerMethod& m) {
+    ReplaceStep(m, "front-check",
+                std::make_unique<FrontCheckStep>(FrontCheckOptions{.confirm_frames = 0}));
+  });
   for (const double e : CesiumWalkHeadingErrors(at_once, 25, 41)) EXPECT_LT(e * 180 / M_PI, 60.0);
-  // By default the turned fit is followed first (front_check_confirm_frames); on frame 25 it
+  // By default the turned fit is followed first (FrontCheckOptions::confirm_frames); on frame 25 it
   // costs at least 10 % less than the track again, so it is taken there (measured: 1-20
   // degrees off on frames 25-40).
   for (const double e : CesiumWalkHeadingErrors(AverageHead(), 25, 41))
@@ -560,7 +593,7 @@ TEST(SkeletonTracker, FollowsAFrontChecksTurnedFitBeforeTakingIt) {
   // every 2nd frame, depth noise seed 5: reenact-eval tracker's fast variant. The start has no
   // calibration pose (it starts at frame 28), so its front is checked. At frame 58 (the 15th
   // tracked frame) the body turned around costs 10 % less than the track on that frame alone
-  // (0.122 against 0.136); taken at once (front_check_confirm_frames 0), the track faces
+  // (0.122 against 0.136); taken at once (the front check's confirm_frames 0), the track faces
   // backwards from there (measured: 133-168 degrees off on frames 58-84, joints 29-45 cm off).
   // Followed first, the rival costs 31 % more than the track on the next frame and is dropped
   // there, and the track keeps its front (measured: within 28 degrees on every frame 40-98).
@@ -569,11 +602,14 @@ TEST(SkeletonTracker, FollowsAFrontChecksTurnedFitBeforeTakingIt) {
   const std::string bvh = std::string(REENACT_SHARED_DATA_DIR) + "/mocap/cmu-131_01-walk.bvh";
   const SyntheticScene scene = SyntheticScene::Create("bvh:" + bvh, 5, body).value();
   const auto heading_errors_deg = [&](int confirm_frames, int first, int end) {
-    SkeletonTrackerOptions options;
-    options.front_check_confirm_frames = confirm_frames;
+    const TrackerSetup setup({}, [confirm_frames](TrackerMethod& m) {
+      ReplaceStep(
+          m, "front-check",
+          std::make_unique<FrontCheckStep>(FrontCheckOptions{.confirm_frames = confirm_frames}));
+    });
     std::vector<double> out;
     TrackFrames(
-        scene, options, first, end,
+        scene, setup, first, end,
         [&](const Skeleton& track, const Skeleton& truth, const Eigen::Vector3d& up) {
           out.push_back(HeadingError(track, truth, up) * 180 / M_PI);
         },
@@ -732,14 +768,14 @@ TEST(SkeletonTracker, TurnedStartsFollowAFastTurn) {
 // The mean error of `hands` over frames [first, end) of the CMU walk 131_01 (real motion
 // capture) on the procedural body, tracked from its first frame as the tracker evaluation
 // does (Kinect-like depth noise), in metres.
-double CmuWalkHandError(const SkeletonTrackerOptions& options, int first, int end,
+double CmuWalkHandError(const TrackerSetup& setup, int first, int end,
                         std::initializer_list<Joint> hands, int step = 1) {
   const std::string bvh = std::string(REENACT_SHARED_DATA_DIR) + "/mocap/cmu-131_01-walk.bvh";
   static const SyntheticScene scene = SyntheticScene::Create("bvh:" + bvh, 1).value();
   double sum = 0;
   int n = 0;
   TrackFrames(
-      scene, options, first, end,
+      scene, setup, first, end,
       [&](const Skeleton& track, const Skeleton& truth, const Eigen::Vector3d&) {
         for (const Joint hand : hands) sum += (track[hand] - truth[hand]).norm(), ++n;
       },
@@ -749,8 +785,8 @@ double CmuWalkHandError(const SkeletonTrackerOptions& options, int first, int en
 
 // Frames 90-124 of the walk: the subject turns there, and a track whose arms take each
 // other's points keeps them crossed (docs/measurements.md).
-double CmuWalkTurnHandError(const SkeletonTrackerOptions& options) {
-  return CmuWalkHandError(options, 90, 125, {Joint::kLeftHand, Joint::kRightHand});
+double CmuWalkTurnHandError(const TrackerSetup& setup) {
+  return CmuWalkHandError(setup, 90, 125, {Joint::kLeftHand, Joint::kRightHand});
 }
 
 TEST(SkeletonTracker, UncrossesArmsThatTookEachOthersPoints) {
@@ -759,13 +795,14 @@ TEST(SkeletonTracker, UncrossesArmsThatTookEachOthersPoints) {
   // hands follow their own arms: 6.1 cm (bound 10: a hand tracked well is 3-10 cm off).
   // The turned starts (off here) undo the crossing on this clip too: a start turned by 25
   // degrees reaches the uncrossed arms (10 cm without the swap).
-  SkeletonTrackerOptions without;
-  without.uncross_limbs = false;
-  without.turn_start_deg = 0;
+  SkeletonTrackerOptions no_turned_starts;
+  no_turned_starts.turn_start_deg = 0;
+  const TrackerSetup without(no_turned_starts, [](TrackerMethod& m) {
+    ReplaceStep(m, "uncross-arms");
+    ReplaceStep(m, "uncross-legs");
+  });
   EXPECT_GT(CmuWalkTurnHandError(without), 0.30);
-  SkeletonTrackerOptions with = without;
-  with.uncross_limbs = true;
-  EXPECT_LT(CmuWalkTurnHandError(with), 0.10);
+  EXPECT_LT(CmuWalkTurnHandError(TrackerSetup(no_turned_starts)), 0.10);
 }
 
 TEST(SkeletonTracker, ReturnsAnArmThatReachedAcrossForTheOthersPoints) {
@@ -778,9 +815,12 @@ TEST(SkeletonTracker, ReturnsAnArmThatReachedAcrossForTheOthersPoints) {
   // 30). The left arm returned to its predicted angles costs 24 % less, and the hands follow
   // their own arms: 1-14 cm, mean 4.4 (bound 10, as above).
   const auto error = [](bool returns_limb) {
-    SkeletonTrackerOptions options;
-    options.uncross_returns_limb = returns_limb;
-    return CmuWalkHandError(options, 84, 91, {Joint::kLeftHand, Joint::kRightHand}, 2);
+    const TrackerSetup setup({}, [returns_limb](TrackerMethod& m) {
+      ReplaceStep(
+          m, "uncross-arms",
+          std::make_unique<UncrossStep>(kArms, UncrossOptions{.return_limb = returns_limb}));
+    });
+    return CmuWalkHandError(setup, 84, 91, {Joint::kLeftHand, Joint::kRightHand}, 2);
   };
   EXPECT_GT(error(false), 0.30);
   EXPECT_LT(error(true), 0.10);
@@ -801,7 +841,7 @@ TEST(SkeletonTracker, KeepsTheLimbSearchsFitThatReachesAHandsPoints) {
 
 TEST(SkeletonTracker, AHiddenArmDoesNotMoveForAFewStrayPoints) {
   // CesiumMan walking CMU 131_02 at 15 frames a second, depth noise seed 5, the swap alone
-  // for crossed arms (uncross_returns_limb off: the path on which this was traced). At frame
+  // for crossed arms (the returned arm off: the path on which this was traced). At frame
   // 78 the fit leaves 0.7 % of its points beyond outlier_m (a few stray points), and the limb
   // search moves the right arm, hidden behind the body, 30 cm up across the chest to them. Its
   // fit costs 2.5 % more, and 5.5 % less with those points counted at outlier_m. Without a margin
@@ -813,13 +853,15 @@ TEST(SkeletonTracker, AHiddenArmDoesNotMoveForAFewStrayPoints) {
   const std::string bvh = std::string(REENACT_SHARED_DATA_DIR) + "/mocap/cmu-131_02-walk.bvh";
   const SyntheticScene scene = SyntheticScene::Create("bvh:" + bvh, 5, body).value();
   const auto error = [&](double gain) {
-    SkeletonTrackerOptions options;
-    options.limb_search_gain = gain;
-    options.uncross_returns_limb = false;
+    const TrackerSetup setup({}, [gain](TrackerMethod& m) {
+      m.fitter.limb_search_gain = gain;
+      ReplaceStep(m, "uncross-arms",
+                  std::make_unique<UncrossStep>(kArms, UncrossOptions{.return_limb = false}));
+    });
     double sum = 0;
     int n = 0;
     TrackFrames(
-        scene, options, 80, 121,
+        scene, setup, 80, 121,
         [&](const Skeleton& track, const Skeleton& truth, const Eigen::Vector3d&) {
           sum += (track[Joint::kRightHand] - truth[Joint::kRightHand]).norm(), ++n;
         },
@@ -827,7 +869,7 @@ TEST(SkeletonTracker, AHiddenArmDoesNotMoveForAFewStrayPoints) {
     return sum / n;
   };
   EXPECT_GT(error(0), 0.20);
-  EXPECT_LT(error(SkeletonTrackerOptions{}.limb_search_gain), 0.10);
+  EXPECT_LT(error(BodyFitterOptions{}.limb_search_gain), 0.10);
 }
 
 // The right foot's errors on frames [first, end) of walk-handheld, seed 4, the subject walking
@@ -835,7 +877,7 @@ TEST(SkeletonTracker, AHiddenArmDoesNotMoveForAFewStrayPoints) {
 std::vector<double> BoxWalkFootErrors(bool static_scene, int first, int end, GivenPose given) {
   static const SyntheticScene scene = SyntheticScene::Create("walk-handheld", 4).value();
   SkeletonTrackerOptions options;
-  options.static_scene.enabled = static_scene;
+  options.learn_static_scene = static_scene;
   std::vector<double> errors;
   TrackFrames(
       scene, options, first, end,
@@ -890,57 +932,6 @@ TEST(SkeletonTracker, FollowsAHandRaisedBehindTheHead) {
   // fit reaches the hand as it rises and keeps it once the head hides it: 1-8 cm (bound 10,
   // as above).
   EXPECT_LT(CmuWalkHandError(SkeletonTrackerOptions{}, 205, 216, {Joint::kRightHand}), 0.10);
-}
-
-TEST(SkeletonTracker, FitsTheLastFrameFromTheTruthWithoutTouchingTheTrack) {
-  // The model's floor (FitLastFrameFrom) on the procedural body, whose joints sit where the
-  // tracker's model puts them: posed from the truth, the calibrated body is off only by its
-  // calibrated lengths (2.0 cm mean on the calibration frame, docs/measurements.md), and
-  // fitted from there it stays near the truth, so both stay within 3 cm (measured 1.8 and 1.7
-  // over frames 1-29); the oracle is a const
-  // query, so a tracker asked on every frame tracks exactly as one never asked.
-  SkeletonTracker asked(Scene().sensor_camera(), 0.001), never(Scene().sensor_camera(), 0.001);
-  EXPECT_FALSE(asked.FitLastFrameFrom(Truth(0)));  // no frame yet
-  double posed = 0, fitted = 0, min_ratio = 1e9, max_ratio = 0;
-  int n = 0;
-  for (int f = 0; f < 30; ++f) {
-    const TrackFrameResult r = TrackFrame(&asked, f);
-    const TrackFrameResult q = TrackFrame(&never, f);
-    ASSERT_TRUE(r.skeleton && q.skeleton) << "frame " << f;
-    for (int j = 0; j < kJointCount; ++j)
-      ASSERT_EQ(r.skeleton->position[j], q.skeleton->position[j]) << "frame " << f;
-    const auto oracle = asked.FitLastFrameFrom(Truth(f));
-    ASSERT_EQ(oracle.has_value(), f > 0) << "frame " << f;  // none on the calibration frame
-    if (!oracle) continue;
-    ExpectSane(oracle->fitted);
-    posed += Mpjpe(oracle->posed, Truth(f));
-    fitted += Mpjpe(oracle->fitted, Truth(f));
-    ++n;
-    // The costs, on the frame's observation: the track's fit and the truth's lie in one basin
-    // here, so they cost about the same (within 10 %); a start 1 m to the side, where no capsule
-    // starts within the fit's outlier_m (15 cm) of the person's points, so that the data term
-    // cannot pull it back, costs over 3 times as much.
-    ASSERT_GT(oracle->track_cost, 0) << "frame " << f;
-    min_ratio = std::min(min_ratio, oracle->fitted_cost / oracle->track_cost);
-    max_ratio = std::max(max_ratio, oracle->fitted_cost / oracle->track_cost);
-    const auto aside = asked.FitLastFrameFrom(
-        Truth(f).Transformed(Eigen::Isometry3d(Eigen::Translation3d(1, 0, 0))));
-    ASSERT_TRUE(aside);
-    EXPECT_EQ(aside->track_cost, oracle->track_cost);
-    EXPECT_GT(aside->fitted_cost, 3 * oracle->track_cost) << "frame " << f;
-  }
-  EXPECT_GT(min_ratio, 0.9);  // measured 0.97-1.00 over frames 1-29
-  EXPECT_LT(max_ratio, 1.1);
-  EXPECT_LT(posed / n, 0.03);
-  EXPECT_LT(fitted / n, 0.03);
-  // A frame without depth leaves nothing to fit; a reset forgets the body.
-  const PinholeCamera& cam = Scene().sensor_camera();
-  EXPECT_FALSE(asked.Track(ImageDepthMm(cam.width, cam.height, 1, 0)).skeleton);
-  EXPECT_FALSE(asked.FitLastFrameFrom(Truth(30)));
-  TrackFrame(&asked, 31);
-  ASSERT_TRUE(asked.FitLastFrameFrom(Truth(31)));
-  asked.Reset();
-  EXPECT_FALSE(asked.FitLastFrameFrom(Truth(31)));
 }
 
 }  // namespace
