@@ -91,7 +91,7 @@ TEST(TrackerExperiment, EachAblationTakesOutWhatItNames) {
 TEST(TrackerExperiment, FitsTheLastFrameFromTheTruthWithoutTouchingTheTrack) {
   // The model's floor (FitLastFrameFrom) on the procedural body, whose joints sit where the
   // tracker's model puts them: posed from the truth, the calibrated body is off only by its
-  // calibrated lengths (2.0 cm mean on the calibration frame, docs/measurements.md), and
+  // calibrated lengths (2.0 cm mean on the calibration frame), and
   // fitted from there it stays near the truth, so both stay within 3 cm (measured 1.8 and 1.7
   // over frames 1-29); the oracle is a const
   // query, so a tracker asked on every frame tracks exactly as one never asked.

@@ -111,8 +111,7 @@ TEST(ShapeFit, CalibrationRecoversCesiumMansSegmentLengths) {
   }
   EXPECT_NEAR(c.shape.StandingHeight(), c.height_m, 0.02);
   // The joints as a whole no farther from the truth than with proportional lengths (the rest
-  // is where the skin rig puts its neck and hips, 12-13 cm below where the surface suggests;
-  // see docs/measurements.md).
+  // is where the skin rig puts its neck and hips, 12-13 cm below where the surface suggests).
   EXPECT_LT(Mpjpe(fitted, truth), Mpjpe(proportional, truth) + 0.002);
 }
 

@@ -570,8 +570,7 @@ TEST(SkeletonTracker, ChecksTheFrontOfAStartFromTheSilhouette) {
   // frame (the front check's confirm_frames 0), the track faces the right way from there (measured:
   // 10-36 degrees off on frames 24-40).
   // Bounds: backwards is beyond 120 degrees on every frame, the right way round within 60 (the
-  // capsule body's heading on CesiumMan is 20-47 degrees off through this walk;
-  // docs/measurements.md).
+  // capsule body's heading on CesiumMan is 20-47 degrees off through this walk).
   // The body keeps the average head here: with the head measured (the test above) the start
   // on this walk already faces the right way, and the check is for the starts that do not.
   const TrackerSetup without = AverageHead([](TrackerMethod& m) { ReplaceStep(m, "front-check"); });
@@ -784,7 +783,7 @@ double CmuWalkHandError(const TrackerSetup& setup, int first, int end,
 }
 
 // Frames 90-124 of the walk: the subject turns there, and a track whose arms take each
-// other's points keeps them crossed (docs/measurements.md).
+// other's points keeps them crossed.
 double CmuWalkTurnHandError(const TrackerSetup& setup) {
   return CmuWalkHandError(setup, 90, 125, {Joint::kLeftHand, Joint::kRightHand});
 }
