@@ -102,41 +102,33 @@ void PrintTruth(const viewer::ArPlaySummary& s) {
         s.within_2cm_1deg, s.truth_frames, s.median_err_cm, s.median_err_deg);
 }
 
-// AR: the reenactment over the viewer's own camera (viewer-client/play/ar_player.h).
-int PlayAr(const CommandLine& cl, const std::string& clip_id, const std::string& server,
-           const std::string& camera_spec) {
-  for (const char* flag : {"width", "height", "orbit-deg"})
-    if (cl.Get(flag))
-      return Fail(MakeError(
-          "usage",
-          std::string("--") + flag + " is for --camera orbit; AR output has the camera's size"));
-  const auto reenact_options = ReenactmentOptionsFrom(cl);
-  if (!reenact_options.ok()) return Fail(reenact_options.error());
-  const bool headless = cl.Has("headless");
-  if (!headless) {
-    for (const char* flag : {"out", "masks", "no-mp4"})
-      if (cl.Has(flag) || cl.Get(flag))
-        return Fail(MakeError(
-            "usage",
-            std::string("--") + flag + " is for --headless output; the window writes no files"));
-    if (cl.Get("clip-clock"))
-      return Fail(MakeError("usage",
-                            "--clip-clock is for --headless; in the window the clip follows the "
-                            "window's clock (space pauses, +/- change the speed)"));
-  }
+// The flags that only --headless output takes, refused in the window.
+Status CheckNoHeadlessFlags(const CommandLine& cl) {
+  for (const char* flag : {"out", "masks", "no-mp4"})
+    if (cl.Has(flag) || cl.Get(flag))
+      return MakeError("usage", std::string("--") + flag +
+                                    " is for --headless output; the window writes no files");
+  if (cl.Get("clip-clock"))
+    return MakeError("usage",
+                     "--clip-clock is for --headless; in the window the clip follows the "
+                     "window's clock (space pauses, +/- change the speed)");
+  return {};
+}
+
+Expected<viewer::ArPlayOptions> ArPlayOptionsFrom(const CommandLine& cl, bool headless) {
   viewer::ArPlayOptions options;
   if (headless) {
     const auto out = cl.Require("out");
-    if (!out.ok()) return Fail(MakeError("usage", "--headless needs --out DIR"));
+    if (!out.ok()) return MakeError("usage", "--headless needs --out DIR");
     options.out_dir = *out;
   }
   const auto frames = cl.GetInt("frames", -1);
-  if (!frames.ok()) return Fail(frames.error());
-  if (*frames == 0 || *frames < -1) return Fail(MakeError("usage", "--frames must be >= 1"));
+  if (!frames.ok()) return frames.error();
+  if (*frames == 0 || *frames < -1) return MakeError("usage", "--frames must be >= 1");
   options.max_frames = static_cast<int>(*frames);
   const std::string clock = cl.GetOr("clip-clock", "time");
   if (clock != "time" && clock != "frames")
-    return Fail(MakeError("usage", "--clip-clock must be 'time' or 'frames', not '" + clock + "'"));
+    return MakeError("usage", "--clip-clock must be 'time' or 'frames', not '" + clock + "'");
   options.frame.clock =
       clock == "time" ? viewer::ClipClock::kCameraTime : viewer::ClipClock::kFrameIndex;
   options.frame.textured = !cl.Has("bare");
@@ -144,38 +136,36 @@ int PlayAr(const CommandLine& cl, const std::string& clip_id, const std::string&
   options.frame.draw_status = !cl.Has("no-status");
   options.write_mp4 = !cl.Has("no-mp4");
   options.write_masks = cl.Has("masks");
-  std::optional<std::filesystem::path> calibration;
-  if (auto c = cl.Get("calibration")) calibration = *c;
+  return options;
+}
 
-  auto source = viewer::OpenCameraSource(camera_spec, calibration);
-  if (!source.ok()) return Fail(source.error());
-  const proto::ApiClient api(server, "");
-  auto clip = viewer::FetchClip(api, clip_id, cl.GetOr("cache", ".cache/reenact-viewer"));
-  if (!clip.ok()) return Fail(clip.error());
-  const viewer::Reenactment reenactment(clip->manifest, std::move(clip->frames), *reenact_options);
-  PrintRelighting(reenactment);
-  if (!headless) {
-    viewer::ArWindowOptions window;
-    window.max_frames = options.max_frames;
-    window.frame = options.frame;
-    window.title = "reenact AR - " + clip->manifest.title;
-    const auto shown = viewer::PlayArInWindow(reenactment, std::move(clip->map), **source, window);
-    if (!shown.ok()) return Fail(shown.error());
-    std::printf(
-        "showed %d camera frames from %s: %d relocalised, %d tracked, %d lost; relocaliser "
-        "%.1f ms, render %.1f ms per frame (medians), %.1f s in all\n",
-        shown->frames, (*source)->description().c_str(), shown->relocalised, shown->tracked,
-        shown->lost, shown->reloc_ms_median, shown->render_ms_median, shown->seconds);
-    PrintTruth(*shown);
-    return 0;
-  }
+int RunArWindow(const viewer::Reenactment& reenactment, proto::ClipMap map,
+                viewer::CameraSource& source, const viewer::ArPlayOptions& options) {
+  viewer::ArWindowOptions window;
+  window.max_frames = options.max_frames;
+  window.frame = options.frame;
+  window.title = "reenact AR - " + reenactment.manifest().title;
+  const auto shown = viewer::PlayArInWindow(reenactment, std::move(map), source, window);
+  if (!shown.ok()) return Fail(shown.error());
+  std::printf(
+      "showed %d camera frames from %s: %d relocalised, %d tracked, %d lost; relocaliser "
+      "%.1f ms, render %.1f ms per frame (medians), %.1f s in all\n",
+      shown->frames, source.description().c_str(), shown->relocalised, shown->tracked, shown->lost,
+      shown->reloc_ms_median, shown->render_ms_median, shown->seconds);
+  PrintTruth(*shown);
+  return 0;
+}
+
+int RunArHeadless(const viewer::Reenactment& reenactment, proto::ClipMap map,
+                  viewer::CameraSource& source, const std::string& clip_id,
+                  const viewer::ArPlayOptions& options) {
   const auto summary =
-      viewer::PlayArHeadless(reenactment, std::move(clip->map), **source, clip_id, options);
+      viewer::PlayArHeadless(reenactment, std::move(map), source, clip_id, options);
   if (!summary.ok()) return Fail(summary.error());
   std::printf(
       "composited %d camera frames from %s: %d relocalised, %d tracked, %d lost; relocaliser "
       "%.1f ms, render %.1f ms per frame (medians), %.1f s in all\n",
-      summary->frames, (*source)->description().c_str(), summary->relocalised, summary->tracked,
+      summary->frames, source.description().c_str(), summary->relocalised, summary->tracked,
       summary->lost, summary->reloc_ms_median, summary->render_ms_median, summary->seconds);
   std::printf("wrote %s/frames/, %s/contact_sheet.png%s, %s/render.json\n",
               options.out_dir.string().c_str(), options.out_dir.string().c_str(),
@@ -188,6 +178,36 @@ int PlayAr(const CommandLine& cl, const std::string& clip_id, const std::string&
     std::cerr << "reenact-viewer: warning: every frame was lost: the camera never saw the clip's "
                  "scene (render.json gives each frame's reason)\n";
   return 0;
+}
+
+// AR: the reenactment over the viewer's own camera (viewer-client/play/ar_player.h).
+int PlayAr(const CommandLine& cl, const std::string& clip_id, const std::string& server,
+           const std::string& camera_spec) {
+  for (const char* flag : {"width", "height", "orbit-deg"})
+    if (cl.Get(flag))
+      return Fail(MakeError(
+          "usage",
+          std::string("--") + flag + " is for --camera orbit; AR output has the camera's size"));
+  const auto reenact_options = ReenactmentOptionsFrom(cl);
+  if (!reenact_options.ok()) return Fail(reenact_options.error());
+  const bool headless = cl.Has("headless");
+  if (!headless) {
+    if (Status s = CheckNoHeadlessFlags(cl); !s.ok()) return Fail(s.error());
+  }
+  const auto options = ArPlayOptionsFrom(cl, headless);
+  if (!options.ok()) return Fail(options.error());
+  std::optional<std::filesystem::path> calibration;
+  if (auto c = cl.Get("calibration")) calibration = *c;
+
+  auto source = viewer::OpenCameraSource(camera_spec, calibration);
+  if (!source.ok()) return Fail(source.error());
+  const proto::ApiClient api(server, "");
+  auto clip = viewer::FetchClip(api, clip_id, cl.GetOr("cache", ".cache/reenact-viewer"));
+  if (!clip.ok()) return Fail(clip.error());
+  const viewer::Reenactment reenactment(clip->manifest, std::move(clip->frames), *reenact_options);
+  PrintRelighting(reenactment);
+  if (!headless) return RunArWindow(reenactment, std::move(clip->map), **source, *options);
+  return RunArHeadless(reenactment, std::move(clip->map), **source, clip_id, *options);
 }
 
 int Play(const CommandLine& cl) {

@@ -134,6 +134,247 @@ Error NothingStored(const RecordSummary& s, const SensorInfo& info) {
                                   "depth: is the depth stream empty, or the view featureless?)");
 }
 
+// The recorder's state across the source frames.
+struct Recording {
+  Recording(const RecordOptions& options, const SensorInfo& info)
+      : options(options),
+        info(info),
+        map_builder(options.map),
+        segmenter(info.depth_camera, info.depth_scale_m, options.segment),
+        world_up(info.world_up) {}
+
+  const RecordOptions& options;
+  const SensorInfo& info;
+  StoredFrames stored;
+  BackgroundMapBuilder map_builder;
+  std::vector<VirtualViewKeyframe> virtual_keyframes;
+  PersonSegmenter segmenter;
+  std::optional<slam::RgbdSlam> slam;
+  std::optional<Eigen::Vector3d> world_up;
+  RecordSummary summary;
+};
+
+// At the first frame, chooses between the source's poses and SLAM; later frames must then
+// keep the source's poses.
+Status ChoosePoseSource(Recording& r, const SensorFrame& f, int index) {
+  if (index == 0) {
+    r.summary.slam_poses = r.options.poses == PoseSource::kSlam || !f.world_from_sensor;
+    if (r.summary.slam_poses)
+      r.slam.emplace(r.info.color_camera, r.info.depth_scale_m,
+                     SlamOptionsFor(r.options, r.info, f));
+    if (r.summary.slam_poses && f.world_from_sensor)
+      r.world_up = r.info.world_up;
+    else if (r.summary.slam_poses)
+      r.world_up.reset();
+  } else if (!r.summary.slam_poses && !f.world_from_sensor) {
+    return MakeError("corrupt", FrameName(index, r.info) +
+                                    " has no sensor pose although the frames before it had");
+  }
+  return {};
+}
+
+// The frame's skeleton in the sensor frame, given the pose known before tracking it.
+Expected<std::optional<Skeleton>> FrameSkeleton(Recording& r, const SensorFrame& f, int index) {
+  const auto skeleton_start = Clock::now();
+  const FramePoseHint pose = r.slam ? FramePoseHint{r.slam->PredictedWorldFromSensor(), r.world_up}
+                                    : FramePoseHint{f.world_from_sensor, r.info.world_up};
+  auto skeleton = SkeletonInSensor(f, r.info, index, r.options, pose);
+  if (!skeleton.ok()) return skeleton.error();
+  r.summary.stage_times.tracker_ms.push_back(r.options.frame_skeletons ? MsSince(skeleton_start)
+                                                                       : 0.0);
+  return skeleton;
+}
+
+// Our segmentation of a frame whose source gives no person mask; none without a skeleton.
+struct Segmented {
+  std::optional<ImageGray8> mask;
+  std::optional<Plane3> floor_in_sensor;
+};
+
+Expected<Segmented> SegmentUnmasked(Recording& r, const SensorFrame& f,
+                                    const std::optional<Skeleton>& skeleton) {
+  const auto segment_start = Clock::now();
+  Segmented segmented;
+  if (!f.person_mask && skeleton) {
+    SegmentFrameGeometry geometry;
+    if (!r.summary.slam_poses) geometry = {f.world_from_sensor, r.info.world_up};
+    auto segmentation = r.segmenter.Segment(f.depth, *skeleton, geometry);
+    if (!segmentation.ok()) return segmentation.error();
+    segmented.mask = std::move(segmentation->mask);
+    segmented.floor_in_sensor = segmentation->floor_in_sensor;
+    ++r.summary.segmented_frames;
+  }
+  r.summary.stage_times.segment_ms.push_back(f.person_mask || !skeleton ? 0.0
+                                                                        : MsSince(segment_start));
+  return segmented;
+}
+
+// The frame's sensor pose: the source's, or SLAM's tracking of the frame with the person
+// masked out.
+Expected<std::optional<Eigen::Isometry3d>> FramePose(Recording& r, const SensorFrame& f,
+                                                     const ImageGray8* person_mask) {
+  std::optional<Eigen::Isometry3d> world_from_sensor = f.world_from_sensor;
+  const auto slam_start = Clock::now();
+  if (r.slam) {
+    auto tracked = r.slam->Track(f.timestamp_s, f.color, f.depth, person_mask);
+    if (!tracked.ok()) return tracked.error();
+    world_from_sensor = tracked->world_from_sensor;
+    r.summary.slam_keyframes += tracked->keyframe;
+    r.summary.slam_fallback_frames += tracked->status == slam::SlamStatus::kOdometryFallback;
+    r.summary.slam_relocalised_frames += tracked->status == slam::SlamStatus::kRelocalised;
+  }
+  r.summary.stage_times.slam_ms.push_back(r.slam ? MsSince(slam_start) : 0.0);
+  return world_from_sensor;
+}
+
+// Crops the frame to the subject, encodes it and keeps it with its skeleton.
+void StoreFrame(Recording& r, const SensorFrame& f, const Skeleton& skeleton_in_sensor,
+                const Eigen::Isometry3d& world_from_sensor, const ImageGray8& mask) {
+  const CropRect crop = SubjectCrop(mask, r.options.crop_margin_px);
+  proto::ClipFrame frame;
+  frame.timestamp_s = f.timestamp_s;
+  frame.world_from_sensor = world_from_sensor;
+  frame.skeleton_in_world = skeleton_in_sensor.Transformed(world_from_sensor);
+  frame.crop_x = crop.x;
+  frame.crop_y = crop.y;
+  frame.color = Crop(f.color, crop);
+  frame.depth = Crop(f.depth, crop);
+  frame.mask = Crop(mask, crop);
+  r.stored.encoded.push_back(proto::EncodeFrame(frame, r.options.codec));
+  r.summary.frame_bytes += r.stored.encoded.back().size();
+  r.stored.skeletons_in_sensor.push_back(skeleton_in_sensor);
+  r.stored.has_subject.push_back(std::any_of(frame.mask.data.begin(), frame.mask.data.end(),
+                                             [](uint8_t v) { return v > 127; }));
+}
+
+// A stored frame's share of the map: a keyframe of the map builder (with the source's poses)
+// and a keyframe of virtual views around the subject.
+void AddToMap(Recording& r, const SensorFrame& f, int index, const Skeleton& skeleton_in_sensor,
+              const Eigen::Isometry3d& world_from_sensor, const ImageGray8& mask) {
+  if (!r.slam && index % r.options.keyframe_interval == 0)
+    r.map_builder.AddKeyframe(f.color, f.depth, r.info.depth_scale_m, mask, r.info.color_camera,
+                              world_from_sensor);
+  const auto pivot = SubjectPivot(skeleton_in_sensor, world_from_sensor);
+  if (pivot && (r.stored.encoded.size() - 1) % r.options.virtual_views.keyframe_interval == 0 &&
+      static_cast<int>(r.virtual_keyframes.size()) < r.options.virtual_views.max_keyframes) {
+    r.virtual_keyframes.push_back({f.color, f.depth, mask, world_from_sensor, *pivot});
+  }
+}
+
+// One source frame: its skeleton, person mask and pose, then stored when it has both a pose
+// and a skeleton.
+Status RecordFrame(Recording& r, const SensorFrame& f, int index) {
+  RecordStageTimes& times = r.summary.stage_times;
+  if (Status sizes = CheckFrameSizes(f, r.info, index); !sizes.ok()) return sizes.error();
+  if (Status poses = ChoosePoseSource(r, f, index); !poses.ok()) return poses.error();
+  auto skeleton = FrameSkeleton(r, f, index);
+  if (!skeleton.ok()) return skeleton.error();
+
+  // The person mask: the source's, else segmented (SLAM needs it before it tracks).
+  auto segmented = SegmentUnmasked(r, f, *skeleton);
+  if (!segmented.ok()) return segmented.error();
+  const ImageGray8* person_mask = f.person_mask     ? &*f.person_mask
+                                  : segmented->mask ? &*segmented->mask
+                                                    : nullptr;
+  auto world_from_sensor = FramePose(r, f, person_mask);
+  if (!world_from_sensor.ok()) return world_from_sensor.error();
+
+  // Without a known up, the first floor that segmentation finds under a posed frame gives it.
+  if (!r.world_up && segmented->floor_in_sensor && *world_from_sensor)
+    r.world_up = ((*world_from_sensor)->linear() * segmented->floor_in_sensor->normal).normalized();
+
+  if (!*world_from_sensor || !*skeleton) {
+    r.summary.frames_without_skeleton += !*skeleton;
+    r.summary.frames_without_pose += *skeleton && !*world_from_sensor;
+    times.encode_ms.push_back(0);
+    times.map_ms.push_back(0);
+    return {};
+  }
+
+  const auto encode_start = Clock::now();
+  if (!person_mask) person_mask = &segmented->mask.emplace(f.color.width, f.color.height, 1, 0);
+  StoreFrame(r, f, **skeleton, **world_from_sensor, *person_mask);
+  times.encode_ms.push_back(MsSince(encode_start));
+
+  const auto map_start = Clock::now();
+  AddToMap(r, f, index, **skeleton, **world_from_sensor, *person_mask);
+  times.map_ms.push_back(r.slam ? 0.0 : MsSince(map_start));
+  return {};
+}
+
+proto::ClipManifest ManifestOf(const Recording& r) {
+  proto::ClipManifest manifest;
+  manifest.title = r.options.title;
+  manifest.author = r.options.author;
+  manifest.capture_time = NowIso8601Utc();
+  manifest.color_camera = r.info.color_camera;
+  manifest.depth_camera = r.info.depth_camera;
+  manifest.depth_scale_m = r.info.depth_scale_m;
+  // Unknown up (no floor seen): the first stored frame's camera -y, right for a level sensor.
+  manifest.world_up = r.world_up.value_or(Eigen::Vector3d(0, -1, 0));
+  manifest.frame_count = r.summary.frames;
+  manifest.frame_rate_hz = r.info.frame_rate_hz;
+  manifest.radius_ratio = DefaultRadiusRatios();
+  return manifest;
+}
+
+// Builds the cylinder model from the stored frames into the manifest's radius ratios and
+// representative frame.
+void BuildModel(Recording& r, proto::ClipManifest& manifest) {
+  // Frames without a subject or with an inconsistent skeleton (bone lengths off the clip's
+  // medians, left and right swapped) stay out of the model; the inconsistent ones are flagged
+  // for the viewer. std::vector<bool> has no contiguous storage to view as a span.
+  const StoredFrames& stored = r.stored;
+  const SensorInfo& info = r.info;
+  const SkeletonConsistency consistency = CheckSkeletonConsistency(stored.skeletons_in_sensor);
+  const auto usable = std::make_unique<bool[]>(stored.has_subject.size());
+  for (size_t n = 0; n < stored.has_subject.size(); ++n) {
+    usable[n] = stored.has_subject[n] && consistency.frames[n].usable;
+    if (!consistency.frames[n].usable) {
+      ++r.summary.inconsistent_skeletons;
+      manifest.flagged_skeleton_frames.push_back(static_cast<int64_t>(n));
+    }
+  }
+  ModelBuildOptions model_options = r.options.model;
+  model_options.fit.depth_scale_m = info.depth_scale_m;
+  const ModelBuildResult model = BuildCylinderModel(
+      stored.skeletons_in_sensor,
+      [&](int n) -> std::optional<ModelFrameImages> {
+        auto frame = proto::DecodeFrame(stored.encoded[n]);
+        if (!frame.ok()) return std::nullopt;
+        return ModelFrameImages{info.color_camera.Cropped(frame->crop_x, frame->crop_y,
+                                                          frame->color.width, frame->color.height),
+                                std::move(frame->depth), std::move(frame->mask)};
+      },
+      model_options, std::span<const bool>(usable.get(), stored.has_subject.size()));
+  for (int p = 0; p < kBodyPartCount; ++p)
+    manifest.radius_ratio[p] = std::clamp(model.radius_ratio[p], 0.02, 2.0);
+  if (model.representative_frame) {
+    manifest.representative_frame = *model.representative_frame;
+    r.summary.representative_frame = *model.representative_frame;
+  }
+  r.summary.fitted_parts = model.fitted_count();
+}
+
+// Finishes the map and writes the clip directory.
+Status WriteClip(Recording& r, proto::ClipManifest& manifest,
+                 const std::filesystem::path& out_dir) {
+  proto::ClipMap map = AddVirtualViews(
+      r.slam ? r.slam->ExportClipMap() : std::move(r.map_builder).Finish(), r.virtual_keyframes,
+      r.info.depth_scale_m, r.info.color_camera, manifest.world_up, r.options.virtual_views,
+      r.options.map, &r.summary.virtual_view_points);
+  auto map_bytes = proto::EncodeMap(map, proto::MapCodecOptions{});
+  if (!map_bytes.ok()) return map_bytes.error();
+  manifest.map.point_count = static_cast<int64_t>(map.points.size());
+  proto::FillPartHashes(manifest, r.stored.encoded, *map_bytes);
+  if (Status written = proto::WriteClipDirectory(out_dir, manifest, r.stored.encoded, *map_bytes);
+      !written.ok())
+    return written.error();
+  r.summary.map_bytes = map_bytes->size();
+  r.summary.map_points = map.points.size();
+  return {};
+}
+
 }  // namespace
 
 void RecordOptions::Check() const {
@@ -157,188 +398,32 @@ Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::p
     return MakeError("already_exists",
                      out_dir.string() + " already exists; remove it or choose another --out");
 
-  StoredFrames stored;
-  BackgroundMapBuilder map_builder(options.map);
-  std::vector<VirtualViewKeyframe> virtual_keyframes;
-  PersonSegmenter segmenter(info.depth_camera, info.depth_scale_m, options.segment);
-  std::optional<slam::RgbdSlam> slam;
-  std::optional<Eigen::Vector3d> world_up = info.world_up;
-  RecordSummary summary;
-  RecordStageTimes& times = summary.stage_times;
-
+  Recording r(options, info);
+  RecordSummary& summary = r.summary;
   while (options.max_frames < 0 || summary.source_frames < options.max_frames) {
     auto read_start = Clock::now();
     auto next = source.Next();
     if (!next.ok()) return next.error();
     if (!next->has_value()) break;
-    const SensorFrame& f = **next;
     const int index = summary.source_frames++;
-    times.source_ms.push_back(MsSince(read_start));
-    if (Status sizes = CheckFrameSizes(f, info, index); !sizes.ok()) return sizes.error();
-
-    if (index == 0) {
-      summary.slam_poses = options.poses == PoseSource::kSlam || !f.world_from_sensor;
-      if (summary.slam_poses)
-        slam.emplace(info.color_camera, info.depth_scale_m, SlamOptionsFor(options, info, f));
-      if (summary.slam_poses && f.world_from_sensor)
-        world_up = info.world_up;
-      else if (summary.slam_poses)
-        world_up.reset();
-    } else if (!summary.slam_poses && !f.world_from_sensor) {
-      return MakeError("corrupt", FrameName(index, info) +
-                                      " has no sensor pose although the frames before it had");
-    }
-
-    const auto skeleton_start = Clock::now();
-    const FramePoseHint pose = slam ? FramePoseHint{slam->PredictedWorldFromSensor(), world_up}
-                                    : FramePoseHint{f.world_from_sensor, info.world_up};
-    auto skeleton = SkeletonInSensor(f, info, index, options, pose);
-    if (!skeleton.ok()) return skeleton.error();
-    times.tracker_ms.push_back(options.frame_skeletons ? MsSince(skeleton_start) : 0.0);
-
-    // The person mask: the source's, else segmented (SLAM needs it before it tracks).
-    const auto segment_start = Clock::now();
-    std::optional<ImageGray8> segmented;
-    std::optional<Plane3> floor_in_sensor;
-    if (!f.person_mask && *skeleton) {
-      SegmentFrameGeometry geometry;
-      if (!summary.slam_poses) geometry = {f.world_from_sensor, info.world_up};
-      auto segmentation = segmenter.Segment(f.depth, **skeleton, geometry);
-      if (!segmentation.ok()) return segmentation.error();
-      segmented = std::move(segmentation->mask);
-      floor_in_sensor = segmentation->floor_in_sensor;
-      ++summary.segmented_frames;
-    }
-    times.segment_ms.push_back(f.person_mask || !*skeleton ? 0.0 : MsSince(segment_start));
-    const ImageGray8* person_mask = f.person_mask ? &*f.person_mask
-                                    : segmented   ? &*segmented
-                                                  : nullptr;
-
-    std::optional<Eigen::Isometry3d> world_from_sensor = f.world_from_sensor;
-    const auto slam_start = Clock::now();
-    if (slam) {
-      auto tracked = slam->Track(f.timestamp_s, f.color, f.depth, person_mask);
-      if (!tracked.ok()) return tracked.error();
-      world_from_sensor = tracked->world_from_sensor;
-      summary.slam_keyframes += tracked->keyframe;
-      summary.slam_fallback_frames += tracked->status == slam::SlamStatus::kOdometryFallback;
-      summary.slam_relocalised_frames += tracked->status == slam::SlamStatus::kRelocalised;
-    }
-    times.slam_ms.push_back(slam ? MsSince(slam_start) : 0.0);
-
-    // Without a known up, the first floor that segmentation finds under a posed frame gives it.
-    if (!world_up && floor_in_sensor && world_from_sensor)
-      world_up = (world_from_sensor->linear() * floor_in_sensor->normal).normalized();
-
-    if (!world_from_sensor || !*skeleton) {
-      summary.frames_without_skeleton += !*skeleton;
-      summary.frames_without_pose += *skeleton && !world_from_sensor;
-      times.encode_ms.push_back(0);
-      times.map_ms.push_back(0);
-      continue;
-    }
-
-    const auto encode_start = Clock::now();
-    if (!person_mask) person_mask = &segmented.emplace(f.color.width, f.color.height, 1, 0);
-    const ImageGray8& mask = *person_mask;
-    const CropRect crop = SubjectCrop(mask, options.crop_margin_px);
-    proto::ClipFrame frame;
-    frame.timestamp_s = f.timestamp_s;
-    frame.world_from_sensor = *world_from_sensor;
-    frame.skeleton_in_world = (*skeleton)->Transformed(*world_from_sensor);
-    frame.crop_x = crop.x;
-    frame.crop_y = crop.y;
-    frame.color = Crop(f.color, crop);
-    frame.depth = Crop(f.depth, crop);
-    frame.mask = Crop(mask, crop);
-    stored.encoded.push_back(proto::EncodeFrame(frame, options.codec));
-    summary.frame_bytes += stored.encoded.back().size();
-    stored.skeletons_in_sensor.push_back(**skeleton);
-    stored.has_subject.push_back(std::any_of(frame.mask.data.begin(), frame.mask.data.end(),
-                                             [](uint8_t v) { return v > 127; }));
-    times.encode_ms.push_back(MsSince(encode_start));
-
-    const auto map_start = Clock::now();
-    if (!slam && index % options.keyframe_interval == 0)
-      map_builder.AddKeyframe(f.color, f.depth, info.depth_scale_m, mask, info.color_camera,
-                              *world_from_sensor);
-    const auto pivot = SubjectPivot(**skeleton, *world_from_sensor);
-    if (pivot && (stored.encoded.size() - 1) % options.virtual_views.keyframe_interval == 0 &&
-        static_cast<int>(virtual_keyframes.size()) < options.virtual_views.max_keyframes) {
-      virtual_keyframes.push_back({f.color, f.depth, mask, *world_from_sensor, *pivot});
-    }
-    times.map_ms.push_back(slam ? 0.0 : MsSince(map_start));
+    summary.stage_times.source_ms.push_back(MsSince(read_start));
+    if (Status recorded = RecordFrame(r, **next, index); !recorded.ok()) return recorded.error();
   }
   if (summary.source_frames == 0)
     return MakeError("empty", "the source " + info.description + " yielded no frames");
-  if (stored.encoded.empty()) return NothingStored(summary, info);
-  summary.frames = static_cast<int>(stored.encoded.size());
+  if (r.stored.encoded.empty()) return NothingStored(summary, info);
+  summary.frames = static_cast<int>(r.stored.encoded.size());
 
-  proto::ClipManifest manifest;
-  manifest.title = options.title;
-  manifest.author = options.author;
-  manifest.capture_time = NowIso8601Utc();
-  manifest.color_camera = info.color_camera;
-  manifest.depth_camera = info.depth_camera;
-  manifest.depth_scale_m = info.depth_scale_m;
-  // Unknown up (no floor seen): the first stored frame's camera -y, right for a level sensor.
-  manifest.world_up = world_up.value_or(Eigen::Vector3d(0, -1, 0));
-  manifest.frame_count = summary.frames;
-  manifest.frame_rate_hz = info.frame_rate_hz;
-  manifest.radius_ratio = DefaultRadiusRatios();
-
-  // Frames without a subject or with an inconsistent skeleton (bone lengths off the clip's
-  // medians, left and right swapped) stay out of the model; the inconsistent ones are flagged
-  // for the viewer. std::vector<bool> has no contiguous storage to view as a span.
+  proto::ClipManifest manifest = ManifestOf(r);
   const auto model_start = Clock::now();
-  const SkeletonConsistency consistency = CheckSkeletonConsistency(stored.skeletons_in_sensor);
-  const auto usable = std::make_unique<bool[]>(stored.has_subject.size());
-  for (size_t n = 0; n < stored.has_subject.size(); ++n) {
-    usable[n] = stored.has_subject[n] && consistency.frames[n].usable;
-    if (!consistency.frames[n].usable) {
-      ++summary.inconsistent_skeletons;
-      manifest.flagged_skeleton_frames.push_back(static_cast<int64_t>(n));
-    }
-  }
-  ModelBuildOptions model_options = options.model;
-  model_options.fit.depth_scale_m = info.depth_scale_m;
-  const ModelBuildResult model = BuildCylinderModel(
-      stored.skeletons_in_sensor,
-      [&](int n) -> std::optional<ModelFrameImages> {
-        auto frame = proto::DecodeFrame(stored.encoded[n]);
-        if (!frame.ok()) return std::nullopt;
-        return ModelFrameImages{info.color_camera.Cropped(frame->crop_x, frame->crop_y,
-                                                          frame->color.width, frame->color.height),
-                                std::move(frame->depth), std::move(frame->mask)};
-      },
-      model_options, std::span<const bool>(usable.get(), stored.has_subject.size()));
-  for (int p = 0; p < kBodyPartCount; ++p)
-    manifest.radius_ratio[p] = std::clamp(model.radius_ratio[p], 0.02, 2.0);
-  if (model.representative_frame) {
-    manifest.representative_frame = *model.representative_frame;
-    summary.representative_frame = *model.representative_frame;
-  }
-  summary.fitted_parts = model.fitted_count();
-  times.model_ms = MsSince(model_start);
+  BuildModel(r, manifest);
+  summary.stage_times.model_ms = MsSince(model_start);
 
   const auto write_start = Clock::now();
-  proto::ClipMap map = AddVirtualViews(
-      slam ? slam->ExportClipMap() : std::move(map_builder).Finish(), virtual_keyframes,
-      info.depth_scale_m, info.color_camera, manifest.world_up, options.virtual_views,
-      options.map, &summary.virtual_view_points);
-  auto map_bytes = proto::EncodeMap(map, proto::MapCodecOptions{});
-  if (!map_bytes.ok()) return map_bytes.error();
-  manifest.map.point_count = static_cast<int64_t>(map.points.size());
-  proto::FillPartHashes(manifest, stored.encoded, *map_bytes);
-  if (Status written = proto::WriteClipDirectory(out_dir, manifest, stored.encoded, *map_bytes);
-      !written.ok())
-    return written.error();
-  times.write_ms = MsSince(write_start);
-
-  summary.map_bytes = map_bytes->size();
-  summary.map_points = map.points.size();
+  if (Status written = WriteClip(r, manifest, out_dir); !written.ok()) return written.error();
+  summary.stage_times.write_ms = MsSince(write_start);
   summary.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  return summary;
+  return std::move(summary);
 }
 
 }  // namespace reenact::capture

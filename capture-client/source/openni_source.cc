@@ -10,10 +10,10 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "capture-client/slam/rolling_shutter.h"
 #include "capture-client/source/frame_checks.h"
 #include "capture-client/source/oni_file_scan.h"
 #include "capture-client/source/openni_runtime.h"
-#include "capture-client/slam/rolling_shutter.h"
 #include "capture-client/source/source_argument.h"
 
 namespace reenact::capture {
@@ -152,6 +152,8 @@ struct OpenNiSource::Impl {
 
   Status ReadOne(openni::VideoStream& stream, bool is_color);
   Expected<std::optional<SensorFrame>> Next();
+  Expected<std::optional<SensorFrame>> PairQueued();
+  Expected<std::optional<SensorFrame>> WaitTimedOut() const;
 };
 
 Status OpenNiSource::Impl::ReadOne(openni::VideoStream& stream, bool is_color) {
@@ -237,30 +239,8 @@ Status OpenNiSource::Impl::ReadOne(openni::VideoStream& stream, bool is_color) {
 
 Expected<std::optional<SensorFrame>> OpenNiSource::Impl::Next() {
   while (true) {
-    while (!color_queue.empty() && !depth_queue.empty()) {
-      const double dt = static_cast<double>(color_queue.front().timestamp_us) -
-                        static_cast<double>(depth_queue.front().timestamp_us);
-      if (std::abs(dt) > max_gap_us) {
-        (dt < 0 ? color_queue : depth_queue).pop_front();
-        ++dropped;
-        continue;
-      }
-      QueuedFrame c = std::move(color_queue.front()), d = std::move(depth_queue.front());
-      color_queue.pop_front();
-      depth_queue.pop_front();
-      SensorFrame frame;
-      frame.timestamp_s = static_cast<double>(c.timestamp_us) * 1e-6;
-      frame.color = ImageRgb8(width, height, 3);
-      frame.depth = ImageDepthMm(width, height, 1);
-      c.image.copyTo(cv::Mat(height, width, CV_8UC3, frame.color.data.data()));
-      d.image.copyTo(cv::Mat(height, width, CV_16UC1, frame.depth.data.data()));
-      const std::string at = where + " frame " + std::to_string(yielded);
-      if (Status s = CheckRegisteredPair(frame.color, frame.depth, info.color_camera, at); !s.ok())
-        return s.error();
-      if (Status s = depth_guard.Observe(frame.depth, where); !s.ok()) return s.error();
-      ++yielded;
-      return std::optional<SensorFrame>(std::move(frame));
-    }
+    auto paired = PairQueued();
+    if (!paired.ok() || paired->has_value()) return paired;
 
     // A recording whose declared frames are all read has ended.
     const bool color_done = is_file && color_total > 0 && color_read >= color_total;
@@ -285,36 +265,71 @@ Expected<std::optional<SensorFrame>> OpenNiSource::Impl::Next() {
     int ready = -1;
     const openni::Status waited =
         openni::OpenNI::waitForAnyStream(streams, n, &ready, options.wait_timeout_ms);
-    if (waited == openni::STATUS_TIME_OUT || (waited == openni::STATUS_OK && ready < 0)) {
-      const std::string seconds = std::to_string(options.wait_timeout_ms / 1000.0);
-      const std::string counts = "after " + std::to_string(color_read) + " colour and " +
-                                 std::to_string(depth_read) + " depth frames";
-      if (!is_file)
-        return MakeError("timeout", where + ": no frame within " + seconds + " s " + counts +
-                                        ": the device stopped sending (unplugged, or in use by "
-                                        "another program?); reconnect it and retry");
-      if (color_read == 0 && depth_read == 0)
-        return MakeError(
-            "timeout",
-            where + ": OpenNI2 yields no frame from this recording (waited " + seconds + " s). " +
-                (lacks_cropping ? "It lacks the cropping property, without which Debian's "
-                                  "OpenNI2 2.2 reader yields no frames"
-                                : "Debian's OpenNI2 2.2 reader yields none from some "
-                                  "recordings (those without the cropping property)") +
-                "; re-record it, or convert it with another OpenNI build");
-      if (color_total <= 0 || depth_total <= 0) {  // no declared length: the end
-        if (Status s = depth_guard.AtEnd(where); !s.ok()) return s.error();
-        return std::optional<SensorFrame>();
-      }
-      return MakeError("timeout", where + ": playback stopped " + counts + " of " +
-                                      std::to_string(color_total) + " and " +
-                                      std::to_string(depth_total) +
-                                      " declared; the recording is damaged after that point");
-    }
+    if (waited == openni::STATUS_TIME_OUT || (waited == openni::STATUS_OK && ready < 0))
+      return WaitTimedOut();
     if (waited != openni::STATUS_OK)
       return MakeError("openni", where + ": waiting for frames failed (" + OpenNiLastError() + ")");
     if (Status s = ReadOne(*streams[ready], is_color[ready]); !s.ok()) return s.error();
   }
+}
+
+// The next pair of queued colour and depth frames close enough in time, dropping the older
+// frame of pairs too far apart; nullopt when a queue runs empty first.
+Expected<std::optional<SensorFrame>> OpenNiSource::Impl::PairQueued() {
+  while (!color_queue.empty() && !depth_queue.empty()) {
+    const double dt = static_cast<double>(color_queue.front().timestamp_us) -
+                      static_cast<double>(depth_queue.front().timestamp_us);
+    if (std::abs(dt) > max_gap_us) {
+      (dt < 0 ? color_queue : depth_queue).pop_front();
+      ++dropped;
+      continue;
+    }
+    QueuedFrame c = std::move(color_queue.front()), d = std::move(depth_queue.front());
+    color_queue.pop_front();
+    depth_queue.pop_front();
+    SensorFrame frame;
+    frame.timestamp_s = static_cast<double>(c.timestamp_us) * 1e-6;
+    frame.color = ImageRgb8(width, height, 3);
+    frame.depth = ImageDepthMm(width, height, 1);
+    c.image.copyTo(cv::Mat(height, width, CV_8UC3, frame.color.data.data()));
+    d.image.copyTo(cv::Mat(height, width, CV_16UC1, frame.depth.data.data()));
+    const std::string at = where + " frame " + std::to_string(yielded);
+    if (Status s = CheckRegisteredPair(frame.color, frame.depth, info.color_camera, at); !s.ok())
+      return s.error();
+    if (Status s = depth_guard.Observe(frame.depth, where); !s.ok()) return s.error();
+    ++yielded;
+    return std::optional<SensorFrame>(std::move(frame));
+  }
+  return std::optional<SensorFrame>();
+}
+
+// No frame came within the wait: an error that says why, or the end of a recording that
+// declares no length.
+Expected<std::optional<SensorFrame>> OpenNiSource::Impl::WaitTimedOut() const {
+  const std::string seconds = std::to_string(options.wait_timeout_ms / 1000.0);
+  const std::string counts = "after " + std::to_string(color_read) + " colour and " +
+                             std::to_string(depth_read) + " depth frames";
+  if (!is_file)
+    return MakeError("timeout", where + ": no frame within " + seconds + " s " + counts +
+                                    ": the device stopped sending (unplugged, or in use by "
+                                    "another program?); reconnect it and retry");
+  if (color_read == 0 && depth_read == 0)
+    return MakeError("timeout",
+                     where + ": OpenNI2 yields no frame from this recording (waited " + seconds +
+                         " s). " +
+                         (lacks_cropping ? "It lacks the cropping property, without which Debian's "
+                                           "OpenNI2 2.2 reader yields no frames"
+                                         : "Debian's OpenNI2 2.2 reader yields none from some "
+                                           "recordings (those without the cropping property)") +
+                         "; re-record it, or convert it with another OpenNI build");
+  if (color_total <= 0 || depth_total <= 0) {  // no declared length: the end
+    if (Status s = depth_guard.AtEnd(where); !s.ok()) return s.error();
+    return std::optional<SensorFrame>();
+  }
+  return MakeError("timeout", where + ": playback stopped " + counts + " of " +
+                                  std::to_string(color_total) + " and " +
+                                  std::to_string(depth_total) +
+                                  " declared; the recording is damaged after that point");
 }
 
 OpenNiSource::OpenNiSource(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -324,9 +339,28 @@ Expected<std::optional<SensorFrame>> OpenNiSource::Next() { return impl_->Next()
 
 namespace {
 
-// Creates both streams, checks their modes, fills the camera and starts them. `impl.where`,
-// `options` and `is_file` are set by the caller.
-Status SetUpStreams(OpenNiSource::Impl& impl, const std::string& registration_note) {
+// Live: asks for 640x480 RGB at 30 Hz and millimetre depth of the same size when offered.
+void PickLiveModes(OpenNiSource::Impl& impl) {
+  const auto pick = [](openni::VideoStream& s, bool want_color) {
+    const auto& modes = s.getSensorInfo().getSupportedVideoModes();
+    for (int i = 0; i < modes.getSize(); ++i) {
+      const openni::VideoMode& m = modes[i];
+      const bool format_ok = want_color ? m.getPixelFormat() == openni::PIXEL_FORMAT_RGB888
+                                        : m.getPixelFormat() == openni::PIXEL_FORMAT_DEPTH_1_MM;
+      if (format_ok && m.getResolutionX() == 640 && m.getResolutionY() == 480 && m.getFps() == 30) {
+        s.setVideoMode(m);
+        return;
+      }
+    }
+  };
+  pick(impl.color, true);
+  pick(impl.depth, false);
+  impl.color.setMirroringEnabled(false);
+  impl.depth.setMirroringEnabled(false);
+}
+
+// Creates both streams, in the live modes for a device.
+Status CreateStreams(OpenNiSource::Impl& impl) {
   const std::string& where = impl.where;
   if (!impl.device.hasSensor(openni::SENSOR_COLOR))
     return MakeError("unsupported", where +
@@ -340,27 +374,15 @@ Status SetUpStreams(OpenNiSource::Impl& impl, const std::string& registration_no
       impl.depth.create(impl.device, openni::SENSOR_DEPTH) != openni::STATUS_OK)
     return MakeError("openni", where + ": cannot create the colour and depth streams (" +
                                    OpenNiLastError() + ")");
-  if (!impl.is_file) {
-    // Live: ask for 640x480 RGB at 30 Hz and millimetre depth of the same size when offered.
-    const auto pick = [](openni::VideoStream& s, bool want_color) {
-      const auto& modes = s.getSensorInfo().getSupportedVideoModes();
-      for (int i = 0; i < modes.getSize(); ++i) {
-        const openni::VideoMode& m = modes[i];
-        const bool format_ok = want_color ? m.getPixelFormat() == openni::PIXEL_FORMAT_RGB888
-                                          : m.getPixelFormat() == openni::PIXEL_FORMAT_DEPTH_1_MM;
-        if (format_ok && m.getResolutionX() == 640 && m.getResolutionY() == 480 &&
-            m.getFps() == 30) {
-          s.setVideoMode(m);
-          return;
-        }
-      }
-    };
-    pick(impl.color, true);
-    pick(impl.depth, false);
-    impl.color.setMirroringEnabled(false);
-    impl.depth.setMirroringEnabled(false);
-  }
-  const openni::VideoMode cm = impl.color.getVideoMode(), dm = impl.depth.getVideoMode();
+  if (!impl.is_file) PickLiveModes(impl);
+  return {};
+}
+
+// Checks the streams' pixel formats and that they share one size, which it takes, with their
+// mirroring.
+Status TakeStreamModes(OpenNiSource::Impl& impl, const openni::VideoMode& cm,
+                       const openni::VideoMode& dm) {
+  const std::string& where = impl.where;
   if (!IsColorFormat(cm.getPixelFormat()))
     return MakeError("unsupported", where + ": colour pixel format " +
                                         PixelFormatName(cm.getPixelFormat()) +
@@ -381,61 +403,87 @@ Status SetUpStreams(OpenNiSource::Impl& impl, const std::string& registration_no
     return MakeError("corrupt", where + ": the streams report no image size");
   impl.color_mirrored = impl.color.getMirroringEnabled();
   impl.depth_mirrored = impl.depth.getMirroringEnabled();
+  return {};
+}
 
-  std::string fov_note;
-  double hfov = 0, vfov = 0;
+// The colour camera's field of view (radians) and a note of where it came from: as given,
+// else the colour stream's, else the depth stream's.
+struct FieldOfView {
+  double h = 0, v = 0;
+  std::string note;
+};
+
+Expected<FieldOfView> StreamFieldOfView(const OpenNiSource::Impl& impl) {
+  FieldOfView fov;
+  double& hfov = fov.h;
+  double& vfov = fov.v;
   if (impl.options.fov_deg) {
     hfov = impl.options.fov_deg->first * kPi / 180;
     vfov = impl.options.fov_deg->second * kPi / 180;
-    fov_note = "field of view " + Deg(hfov) + "x" + Deg(vfov) + " deg as given";
-  } else {
-    hfov = impl.color.getHorizontalFieldOfView();
-    vfov = impl.color.getVerticalFieldOfView();
-    fov_note = "colour stream's field of view ";
-    if (!(hfov > 0 && hfov < kPi && vfov > 0 && vfov < kPi)) {
-      hfov = impl.depth.getHorizontalFieldOfView();
-      vfov = impl.depth.getVerticalFieldOfView();
-      fov_note = "depth stream's field of view (the colour stream has none) ";
-    }
-    if (!(hfov > 0 && hfov < kPi && vfov > 0 && vfov < kPi))
-      return MakeError("unsupported", where +
-                                          " reports no field of view for either stream; "
-                                          "give the colour camera's with ?fov=HxV "
-                                          "(degrees, e.g. fov=62.7x48.6 for a Kinect v1)");
-    fov_note += Deg(hfov) + "x" + Deg(vfov) + " deg";
+    fov.note = "field of view " + Deg(hfov) + "x" + Deg(vfov) + " deg as given";
+    return fov;
   }
-  impl.info.color_camera = CameraFromFieldOfView(impl.width, impl.height, hfov, vfov);
+  hfov = impl.color.getHorizontalFieldOfView();
+  vfov = impl.color.getVerticalFieldOfView();
+  fov.note = "colour stream's field of view ";
+  if (!(hfov > 0 && hfov < kPi && vfov > 0 && vfov < kPi)) {
+    hfov = impl.depth.getHorizontalFieldOfView();
+    vfov = impl.depth.getVerticalFieldOfView();
+    fov.note = "depth stream's field of view (the colour stream has none) ";
+  }
+  if (!(hfov > 0 && hfov < kPi && vfov > 0 && vfov < kPi))
+    return MakeError("unsupported", impl.where +
+                                        " reports no field of view for either stream; "
+                                        "give the colour camera's with ?fov=HxV "
+                                        "(degrees, e.g. fov=62.7x48.6 for a Kinect v1)");
+  fov.note += Deg(hfov) + "x" + Deg(vfov) + " deg";
+  return fov;
+}
+
+// A recording's declared frame counts, and whether it plays on repeat.
+void SetUpPlayback(OpenNiSource::Impl& impl) {
+  openni::PlaybackControl* playback = impl.device.getPlaybackControl();
+  impl.color_total = playback->getNumberOfFrames(impl.color);
+  impl.depth_total = playback->getNumberOfFrames(impl.depth);
+  impl.info.frame_count = impl.color_total > 0 && impl.depth_total > 0
+                              ? std::min(impl.color_total, impl.depth_total)
+                              : -1;
+  // Played to its end, OpenNI2's player thread then walks its stream list every 10 ms
+  // without a lock, and destroying a stream meanwhile can crash it (docs/decisions.md,
+  // Capture). Set to repeat, it instead starts over and waits for the next read, which never
+  // comes: Next() ends at the declared counts. Only where the recording holds exactly those
+  // counts (ScanOniFile's records; OpenNI2 refused to open the real recording with its
+  // counts raised to 13, so this is a second guard), so that no frame is read twice; should
+  // the player skip one anyway, ReadOne refuses the frame that starts the recording over.
+  impl.repeating = impl.color_total > 0 && impl.color_total == impl.color_records &&
+                   impl.depth_total > 0 && impl.depth_total == impl.depth_records;
+  if (impl.repeating && playback->setRepeatEnabled(true) != openni::STATUS_OK)
+    impl.repeating = false;
+}
+
+// Creates both streams, checks their modes, fills the camera and starts them. `impl.where`,
+// `options` and `is_file` are set by the caller.
+Status SetUpStreams(OpenNiSource::Impl& impl, const std::string& registration_note) {
+  const std::string& where = impl.where;
+  if (Status created = CreateStreams(impl); !created.ok()) return created.error();
+  const openni::VideoMode cm = impl.color.getVideoMode(), dm = impl.depth.getVideoMode();
+  if (Status modes = TakeStreamModes(impl, cm, dm); !modes.ok()) return modes.error();
+  const Expected<FieldOfView> fov = StreamFieldOfView(impl);
+  if (!fov.ok()) return fov.error();
+  impl.info.color_camera = CameraFromFieldOfView(impl.width, impl.height, fov->h, fov->v);
   impl.info.depth_camera = impl.info.color_camera;
   impl.info.depth_scale_m = 0.001;
   impl.info.frame_rate_hz = cm.getFps() > 0 ? cm.getFps() : 30;
   impl.max_gap_us = (impl.options.max_pair_gap_s > 0 ? impl.options.max_pair_gap_s
                                                      : 0.5 / impl.info.frame_rate_hz) *
                     1e6;
-  if (impl.is_file) {
-    openni::PlaybackControl* playback = impl.device.getPlaybackControl();
-    impl.color_total = playback->getNumberOfFrames(impl.color);
-    impl.depth_total = playback->getNumberOfFrames(impl.depth);
-    impl.info.frame_count = impl.color_total > 0 && impl.depth_total > 0
-                                ? std::min(impl.color_total, impl.depth_total)
-                                : -1;
-    // Played to its end, OpenNI2's player thread then walks its stream list every 10 ms
-    // without a lock, and destroying a stream meanwhile can crash it (docs/decisions.md,
-    // Capture). Set to repeat, it instead starts over and waits for the next read, which never
-    // comes: Next() ends at the declared counts. Only where the recording holds exactly those
-    // counts (ScanOniFile's records; OpenNI2 refused to open the real recording with its
-    // counts raised to 13, so this is a second guard), so that no frame is read twice; should
-    // the player skip one anyway, ReadOne refuses the frame that starts the recording over.
-    impl.repeating = impl.color_total > 0 && impl.color_total == impl.color_records &&
-                     impl.depth_total > 0 && impl.depth_total == impl.depth_records;
-    if (impl.repeating && playback->setRepeatEnabled(true) != openni::STATUS_OK)
-      impl.repeating = false;
-  }
+  if (impl.is_file) SetUpPlayback(impl);
   // Kinect v1 and the Xtion / Carmine class that OpenNI2 drives read colour out alike.
   impl.info.color_readout_ratio = slam::kKinectV1ReadoutRatio;
   char summary[160];
   std::snprintf(summary, sizeof summary, " (%dx%d at %.0f Hz, ", impl.width, impl.height,
                 impl.info.frame_rate_hz);
-  impl.info.description = where + summary + registration_note + ", " + fov_note +
+  impl.info.description = where + summary + registration_note + ", " + fov->note +
                           (impl.color_mirrored || impl.depth_mirrored ? ", un-mirrored" : "") + ")";
   impl.depth_guard = DepthPresenceGuard(impl.options.max_leading_empty_depth_frames);
 

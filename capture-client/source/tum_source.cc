@@ -22,6 +22,33 @@ std::string DirectoryName(const fs::path& dir) {
   return (ec ? p : canonical).filename().string();
 }
 
+// Every listed image must exist before the first frame is read: a partial download fails
+// here, not minutes into a run.
+Status CheckListedImagesExist(const fs::path& dir, const TumFrameList& list) {
+  std::error_code ec;
+  size_t missing = 0;
+  std::string first_missing;
+  for (const TumFramePair& f : list.frames)
+    for (const std::string* file : {&f.color_file, &f.depth_file})
+      if (!fs::is_regular_file(dir / *file, ec) && missing++ == 0) first_missing = *file;
+  if (missing > 0)
+    return MakeError("not_found", "tum:" + dir.string() + ": " + first_missing + ", listed in " +
+                                      list.listed_in + ", does not exist (" +
+                                      std::to_string(missing) +
+                                      " listed image(s) missing); the sequence is incomplete: "
+                                      "unpack it again");
+  return {};
+}
+
+std::string CameraNote(const PinholeCamera& raw, bool undistorted,
+                       TumSourceOptions::Undistort undistort) {
+  if (raw.distortion.IsZero()) return "images undistorted at the source";
+  if (!undistorted) return "images not undistorted (camera with distortion)";
+  if (undistort == TumSourceOptions::Undistort::kBoth)
+    return "colour and depth undistorted (undistorted camera)";
+  return "colour undistorted (undistorted camera), depth as recorded";
+}
+
 }  // namespace
 
 void TumSourceOptions::Check() const {
@@ -59,63 +86,52 @@ Expected<std::unique_ptr<TumSource>> TumSource::Open(const fs::path& dir,
   auto list = ReadTumFrameList(dir, options.max_association_gap_s);
   if (!list.ok()) return list.error();
   source->frames_ = std::move(list).value();
-  // Every listed image must exist before the first frame is read: a partial download fails
-  // here, not minutes into a run.
-  size_t missing = 0;
-  std::string first_missing;
-  for (const TumFramePair& f : source->frames_.frames)
-    for (const std::string* file : {&f.color_file, &f.depth_file})
-      if (!fs::is_regular_file(dir / *file, ec) && missing++ == 0) first_missing = *file;
-  if (missing > 0)
-    return MakeError("not_found", "tum:" + dir.string() + ": " + first_missing + ", listed in " +
-                                      source->frames_.listed_in + ", does not exist (" +
-                                      std::to_string(missing) +
-                                      " listed image(s) missing); the sequence is incomplete: "
-                                      "unpack it again");
+  if (Status exist = CheckListedImagesExist(dir, source->frames_); !exist.ok())
+    return exist.error();
+  if (Status loaded = source->LoadGroundTruth(); !loaded.ok()) return loaded.error();
+  source->DescribeSensor();
+  source->depth_guard_ = DepthPresenceGuard(options.max_leading_empty_depth_frames);
+  return source;
+}
 
-  const fs::path gt = dir / "groundtruth.txt";
+Status TumSource::LoadGroundTruth() {
+  std::error_code ec;
+  const fs::path gt = dir_ / "groundtruth.txt";
   if (fs::is_regular_file(gt, ec)) {
     auto samples = ReadTumTrajectory(gt);
     if (!samples.ok()) return samples.error();
-    source->ground_truth_samples_ = std::move(samples).value();
-    source->has_ground_truth_ = true;
+    ground_truth_samples_ = std::move(samples).value();
+    has_ground_truth_ = true;
   }
-  for (const TumFramePair& f : source->frames_.frames)
-    source->ground_truth_.push_back(
-        source->has_ground_truth_ ? InterpolatePose(source->ground_truth_samples_, f.color_time_s,
-                                                    options.max_ground_truth_gap_s)
-                                  : std::nullopt);
+  for (const TumFramePair& f : frames_.frames)
+    ground_truth_.push_back(has_ground_truth_
+                                ? InterpolatePose(ground_truth_samples_, f.color_time_s,
+                                                  options_.max_ground_truth_gap_s)
+                                : std::nullopt);
+  return {};
+}
 
-  const PinholeCamera raw = TumColorCamera(source->camera_);
-  SensorInfo& info = source->info_;
-  if (options.undistort == TumSourceOptions::Undistort::kNone || raw.distortion.IsZero()) {
+void TumSource::DescribeSensor() {
+  const PinholeCamera raw = TumColorCamera(camera_);
+  SensorInfo& info = info_;
+  if (options_.undistort == TumSourceOptions::Undistort::kNone || raw.distortion.IsZero()) {
     info.color_camera = raw;
   } else {
-    source->undistorter_.emplace(raw);
-    info.color_camera = source->undistorter_->undistorted_camera();
+    undistorter_.emplace(raw);
+    info.color_camera = undistorter_->undistorted_camera();
   }
   info.depth_camera = info.color_camera;
   info.depth_scale_m = 0.001;
-  const auto& frames = source->frames_.frames;
+  const auto& frames = frames_.frames;
   info.frame_count = static_cast<int>(frames.size());
   const double span = frames.back().color_time_s - frames.front().color_time_s;
   info.frame_rate_hz = frames.size() >= 2 && span > 0 ? (frames.size() - 1) / span : 30;
   info.color_readout_ratio = slam::kKinectV1ReadoutRatio;  // every TUM RGB-D camera is one
-  std::string camera_note;
-  if (raw.distortion.IsZero())
-    camera_note = "images undistorted at the source";
-  else if (!source->undistorter_)
-    camera_note = "images not undistorted (camera with distortion)";
-  else if (options.undistort == TumSourceOptions::Undistort::kBoth)
-    camera_note = "colour and depth undistorted (undistorted camera)";
-  else
-    camera_note = "colour undistorted (undistorted camera), depth as recorded";
-  info.description = "tum:" + dir.string() + " (" + std::string(TumCameraName(source->camera_)) +
-                     ", " + std::to_string(frames.size()) + " frames from " +
-                     source->frames_.listed_in + ", " + camera_note + ", " +
-                     (source->has_ground_truth_ ? "with" : "without") + " ground truth)";
-  source->depth_guard_ = DepthPresenceGuard(options.max_leading_empty_depth_frames);
-  return source;
+  const std::string camera_note = CameraNote(raw, undistorter_.has_value(), options_.undistort);
+  info.description = "tum:" + dir_.string() + " (" + std::string(TumCameraName(camera_)) + ", " +
+                     std::to_string(frames.size()) + " frames from " + frames_.listed_in + ", " +
+                     camera_note + ", " + (has_ground_truth_ ? "with" : "without") +
+                     " ground truth)";
 }
 
 Expected<std::unique_ptr<TumSource>> TumSource::OpenSpec(const std::string& argument) {

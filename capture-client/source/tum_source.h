@@ -89,6 +89,10 @@ class TumSource : public FrameSource {
 
  private:
   TumSource() = default;
+  // Reads groundtruth.txt when there is one and interpolates each frame's pose in it.
+  Status LoadGroundTruth();
+  // The cameras (undistorted as options_ ask), frame count and rate, and description.
+  void DescribeSensor();
 
   std::filesystem::path dir_;
   TumSourceOptions options_;

@@ -302,6 +302,177 @@ void CheckFrame(const CrossSectionFitFrame& frame) {
                 "depth must be empty or 1-channel of the mask's size");
 }
 
+using PartCylinders = std::array<std::optional<Cylinder>, kBodyPartCount>;
+
+// The cylinder's axis as drawn in the image, with the scales pixel assignment measures in.
+std::optional<ProjectedPartAxis> ProjectCylinderAxis(const Cylinder& c,
+                                                     const PinholeCamera& camera) {
+  std::optional<ProjectedPartAxis> axis = ProjectPartAxis(c.a, c.b, camera);
+  if (!axis) return axis;
+  const double f_across = std::hypot(axis->normal.x() * camera.fx, axis->normal.y() * camera.fy);
+  axis->distance_unit_a = std::max(c.radius * f_across / c.a.z(), 0.5);
+  axis->distance_unit_b = std::max(c.radius * f_across / c.b.z(), 0.5);
+  axis->end_band_a_px = EndRimBand(camera, c.a, c.b, c.radius, -axis->dir);
+  axis->end_band_b_px = EndRimBand(camera, c.b, c.a, c.radius, axis->dir);
+  axis->depth_a_m = c.a.z();
+  axis->depth_b_m = c.b.z();
+  axis->radius_m = c.radius;
+  return axis;
+}
+
+// Ring k's slice of a part; not usable where a projection fails or the axis is too
+// foreshortened (f_mean: the camera's mean focal length).
+RingSlice SliceRing(int k, const Cylinder& c, const Eigen::Vector3d& u,
+                    const ProjectedPartAxis& axis, const PinholeCamera& camera, double f_mean,
+                    const CrossSectionFitOptions& options) {
+  RingSlice slice;
+  slice.t = MeasuredT(k, options);
+  slice.centre = c.a + slice.t * (c.b - c.a);
+  const auto centre_px = camera.Project(slice.centre);
+  const auto step_px = camera.Project(slice.centre + kAxisStepM * u);
+  const auto lo_px = camera.Project(c.a + (slice.t - options.half_slice) * (c.b - c.a));
+  const auto hi_px = camera.Project(c.a + (slice.t + options.half_slice) * (c.b - c.a));
+  if (!centre_px || !step_px || !lo_px || !hi_px) return slice;
+  const double scale = (*step_px - *centre_px).norm() / kAxisStepM;
+  if (!(scale >= options.min_axis_scale * f_mean / slice.centre.z())) return slice;
+  slice.v_centre = AlongAxis(axis, *centre_px);
+  double v_lo = AlongAxis(axis, *lo_px), v_hi = AlongAxis(axis, *hi_px);
+  if (v_hi - v_lo < 3) {
+    v_lo = slice.v_centre - 1.5;
+    v_hi = slice.v_centre + 1.5;
+  }
+  slice.v_lo = v_lo;
+  slice.lines = static_cast<int>(std::ceil(v_hi - v_lo));
+  slice.usable = slice.lines >= 1;
+  return slice;
+}
+
+// A part's geometry for measuring: its axis in 3D and, when it lies far enough in front of
+// the camera, its ring slices with empty lines.
+PartGeometry PartGeometryOf(const Cylinder& c, BodyPart part, const Skeleton& skeleton,
+                            const ProjectedPartAxis& axis, const PinholeCamera& camera,
+                            const CrossSectionFitOptions& options) {
+  PartGeometry g;
+  g.cylinder = c;
+  g.u = (c.b - c.a) / c.Length();
+  g.width_direction = PartWidthDirection(skeleton, part);
+  const double near = std::max(options.max_ratio * c.radius, 1e-3);
+  g.measurable = c.radius > 0 && std::min(c.a.z(), c.b.z()) > near;
+  if (!g.measurable) return g;
+  const double f_mean = 0.5 * (camera.fx + camera.fy);
+  for (int k = 0; k < kShapeRings; ++k) {
+    g.slices[k] = SliceRing(k, c, g.u, axis, camera, f_mean, options);
+    g.lines[k].assign(std::max(g.slices[k].lines, 0), {});
+  }
+  return g;
+}
+
+// Files a counted pixel (v pixels along its part's projected axis, offset_px across) under
+// the line of every ring slice it falls in.
+void AddToRingLines(PartGeometry& g, double v, double offset_px, int x, int y) {
+  for (int k = 0; k < kShapeRings; ++k) {
+    const RingSlice& slice = g.slices[k];
+    if (!slice.usable) continue;
+    // (the epsilon keeps pixels that lie on a bin boundary up to rounding in one bin)
+    const double line = std::floor(v - slice.v_lo + 1e-6);
+    if (line < 0 || line >= slice.lines) continue;
+    g.lines[k][static_cast<size_t>(line)].push_back({offset_px, x, y});
+  }
+}
+
+// Assignment pass: labels, and each counted pixel's place along and across its axis (into
+// the parts' ring lines).
+Image<int8_t> AssignPixels(const ImageGray8& mask, const ImageDepthMm& depth,
+                           const PartCylinders& cylinders, const ProjectedPartAxes& axes,
+                           const PinholeCamera& camera, const CrossSectionFitOptions& options,
+                           std::array<PartGeometry, kBodyPartCount>& parts) {
+  Image<int8_t> labels(mask.width, mask.height, 1, kBackground);
+  for (int y = 0; y < mask.height; ++y) {
+    for (int x = 0; x < mask.width; ++x) {
+      if (mask.at(x, y) < 128) continue;
+      labels.at(x, y) = kNotCounted;
+      const double reading =
+          depth.empty() ? 0.0 : depth.at(x, y) * options.depth_scale_m;  // 0: no reading
+      const auto assigned = AssignPixelToPart(Eigen::Vector2d(x, y), axes, reading);
+      if (!assigned) continue;
+      const int p = assigned->part;
+      const Cylinder& c = *cylinders[p];
+      const double z_axis = AxisDepthAt(assigned->t, c.a.z(), c.b.z());
+      const ProjectedPartAxis& axis = *axes[p];
+      const double f_across = std::hypot(axis.normal.x() * camera.fx, axis.normal.y() * camera.fy);
+      const double cap_px = 1.1 * options.max_ratio * c.radius * f_across / z_axis + 2;
+      if (std::abs(assigned->offset_px) > cap_px) continue;
+      if (!depth.empty() && depth.at(x, y) != 0 &&
+          std::abs(depth.at(x, y) * options.depth_scale_m - z_axis) >
+              options.depth_tolerance_m + options.max_ratio * c.radius)
+        continue;
+      labels.at(x, y) = static_cast<int8_t>(p);
+      if (parts[p].measurable)
+        AddToRingLines(parts[p], assigned->t * axis.length_px, assigned->offset_px, x, y);
+    }
+  }
+  return labels;
+}
+
+// The outer offsets (pixels across the axis, + and - side) of a ring slice's lines whose
+// silhouette run ends in an edge on both sides.
+struct LineEdges {
+  std::vector<double> plus, minus;
+};
+
+LineEdges SilhouetteEdges(std::vector<std::vector<LinePixel>>& lines, const RingSlice& slice,
+                          const ProjectedPartAxis& axis, const EdgeTest& is_edge, int part) {
+  LineEdges edges;
+  for (size_t line = 0; line < lines.size(); ++line) {
+    const double v = slice.v_lo + line + 0.5;
+    const auto run = AxisRun(lines[line], is_edge.labels, axis, v);
+    if (!run) continue;
+    if (!is_edge(run->second.x, run->second.y, axis.normal, part) ||
+        !is_edge(run->first.x, run->first.y, -axis.normal, part))
+      continue;
+    edges.plus.push_back(run->second.offset + 0.5);
+    edges.minus.push_back(run->first.offset - 0.5);
+  }
+  return edges;
+}
+
+// Ring k of a measurable part from its silhouette edges; nullopt where too few lines have
+// both edges or the tangent planes degenerate.
+std::optional<RingMeasurement> MeasureRing(PartGeometry& g, int k, int part,
+                                           const ProjectedPartAxis& axis,
+                                           const Image<int8_t>& labels, const ImageDepthMm& depth,
+                                           const PinholeCamera& camera,
+                                           const CrossSectionFitOptions& options) {
+  const RingSlice& slice = g.slices[k];
+  const EdgeTest is_edge{labels, depth, options.depth_scale_m, options.depth_tolerance_m};
+  const LineEdges edges = SilhouetteEdges(g.lines[k], slice, axis, is_edge, part);
+  if (static_cast<int>(edges.plus.size()) < options.min_lines) return std::nullopt;
+  const Eigen::Vector2d on_axis = axis.a + slice.v_centre * axis.dir;
+  const Eigen::Vector2d edge_plus = on_axis + Median(edges.plus) * axis.normal;
+  const Eigen::Vector2d edge_minus = on_axis + Median(edges.minus) * axis.normal;
+  // The 3D direction across the axis that the image's +normal side shows.
+  const double z = slice.centre.z();
+  Eigen::Vector3d side = camera.Unproject(on_axis + axis.normal, z) - camera.Unproject(on_axis, z);
+  side -= side.dot(g.u) * g.u;
+  if (!(side.norm() > 0)) return std::nullopt;
+  const auto h_plus = SupportAtEdge(camera, edge_plus, slice.centre, g.u, side);
+  const auto h_minus = SupportAtEdge(camera, edge_minus, slice.centre, g.u, -side);
+  if (!h_plus || !h_minus) return std::nullopt;
+  const double r = g.cylinder.radius;
+  const double q = (h_plus->h + h_minus->h) / (2 * r);
+  if (!std::isfinite(q) || !(q > 0)) return std::nullopt;
+  RingMeasurement m;
+  m.t = slice.t;
+  m.radius_m = r;
+  m.half_width = q;
+  if (g.width_direction) {
+    const double cp = h_plus->normal.dot(*g.width_direction);
+    const double cm = h_minus->normal.dot(*g.width_direction);
+    m.width_weight = std::array<double, 2>{cp * cp, cm * cm};
+  }
+  return m;
+}
+
 }  // namespace
 
 void CrossSectionFitOptions::Check() const {
@@ -334,142 +505,28 @@ CrossSectionMeasurements MeasureCrossSections(const CrossSectionFitFrame& frame,
   CheckFrame(frame);
   const Skeleton& skeleton = *frame.skeleton_in_sensor;
   const PinholeCamera& camera = *frame.camera;
-  const ImageGray8& mask = *frame.mask;
   const ImageDepthMm& depth = *frame.depth;
-  const double f_mean = 0.5 * (camera.fx + camera.fy);
 
-  const auto cylinders = PoseCylinders(skeleton, ratios, extensions);
+  const PartCylinders cylinders = PoseCylinders(skeleton, ratios, extensions);
   ProjectedPartAxes axes;
   std::array<PartGeometry, kBodyPartCount> parts;
   for (int p = 0; p < kBodyPartCount; ++p) {
     if (!cylinders[p]) continue;
-    const Cylinder& c = *cylinders[p];
-    axes[p] = ProjectPartAxis(c.a, c.b, camera);
+    axes[p] = ProjectCylinderAxis(*cylinders[p], camera);
     if (!axes[p]) continue;
-    const double f_across =
-        std::hypot(axes[p]->normal.x() * camera.fx, axes[p]->normal.y() * camera.fy);
-    axes[p]->distance_unit_a = std::max(c.radius * f_across / c.a.z(), 0.5);
-    axes[p]->distance_unit_b = std::max(c.radius * f_across / c.b.z(), 0.5);
-    axes[p]->end_band_a_px = EndRimBand(camera, c.a, c.b, c.radius, -axes[p]->dir);
-    axes[p]->end_band_b_px = EndRimBand(camera, c.b, c.a, c.radius, axes[p]->dir);
-    axes[p]->depth_a_m = c.a.z();
-    axes[p]->depth_b_m = c.b.z();
-    axes[p]->radius_m = c.radius;
-    PartGeometry& g = parts[p];
-    g.cylinder = c;
-    g.u = (c.b - c.a) / c.Length();
-    g.width_direction = PartWidthDirection(skeleton, static_cast<BodyPart>(p));
-    const double near = std::max(options.max_ratio * c.radius, 1e-3);
-    g.measurable = c.radius > 0 && std::min(c.a.z(), c.b.z()) > near;
-    if (!g.measurable) continue;
-    const ProjectedPartAxis& axis = *axes[p];
-    for (int k = 0; k < kShapeRings; ++k) {
-      RingSlice& slice = g.slices[k];
-      slice.t = MeasuredT(k, options);
-      slice.centre = c.a + slice.t * (c.b - c.a);
-      const auto centre_px = camera.Project(slice.centre);
-      const auto step_px = camera.Project(slice.centre + kAxisStepM * g.u);
-      const auto lo_px = camera.Project(c.a + (slice.t - options.half_slice) * (c.b - c.a));
-      const auto hi_px = camera.Project(c.a + (slice.t + options.half_slice) * (c.b - c.a));
-      if (!centre_px || !step_px || !lo_px || !hi_px) continue;
-      const double scale = (*step_px - *centre_px).norm() / kAxisStepM;
-      if (!(scale >= options.min_axis_scale * f_mean / slice.centre.z())) continue;
-      slice.v_centre = AlongAxis(axis, *centre_px);
-      double v_lo = AlongAxis(axis, *lo_px), v_hi = AlongAxis(axis, *hi_px);
-      if (v_hi - v_lo < 3) {
-        v_lo = slice.v_centre - 1.5;
-        v_hi = slice.v_centre + 1.5;
-      }
-      slice.v_lo = v_lo;
-      slice.lines = static_cast<int>(std::ceil(v_hi - v_lo));
-      slice.usable = slice.lines >= 1;
-      g.lines[k].assign(std::max(slice.lines, 0), {});
-    }
+    parts[p] = PartGeometryOf(*cylinders[p], static_cast<BodyPart>(p), skeleton, *axes[p], camera,
+                              options);
   }
 
-  // Assignment pass: labels, and each counted pixel's place along and across its axis.
-  Image<int8_t> labels(mask.width, mask.height, 1, kBackground);
-  for (int y = 0; y < mask.height; ++y) {
-    for (int x = 0; x < mask.width; ++x) {
-      if (mask.at(x, y) < 128) continue;
-      labels.at(x, y) = kNotCounted;
-      const double reading =
-          depth.empty() ? 0.0 : depth.at(x, y) * options.depth_scale_m;  // 0: no reading
-      const auto assigned = AssignPixelToPart(Eigen::Vector2d(x, y), axes, reading);
-      if (!assigned) continue;
-      const int p = assigned->part;
-      const Cylinder& c = *cylinders[p];
-      const double z_axis = AxisDepthAt(assigned->t, c.a.z(), c.b.z());
-      const ProjectedPartAxis& axis = *axes[p];
-      const double f_across = std::hypot(axis.normal.x() * camera.fx, axis.normal.y() * camera.fy);
-      const double cap_px = 1.1 * options.max_ratio * c.radius * f_across / z_axis + 2;
-      if (std::abs(assigned->offset_px) > cap_px) continue;
-      if (!depth.empty() && depth.at(x, y) != 0 &&
-          std::abs(depth.at(x, y) * options.depth_scale_m - z_axis) >
-              options.depth_tolerance_m + options.max_ratio * c.radius)
-        continue;
-      labels.at(x, y) = static_cast<int8_t>(p);
-      PartGeometry& g = parts[p];
-      if (!g.measurable) continue;
-      const double v = assigned->t * axis.length_px;
-      for (int k = 0; k < kShapeRings; ++k) {
-        const RingSlice& slice = g.slices[k];
-        if (!slice.usable) continue;
-        // (the epsilon keeps pixels that lie on a bin boundary up to rounding in one bin)
-        const double line = std::floor(v - slice.v_lo + 1e-6);
-        if (line < 0 || line >= slice.lines) continue;
-        g.lines[k][static_cast<size_t>(line)].push_back({assigned->offset_px, x, y});
-      }
-    }
-  }
+  const Image<int8_t> labels =
+      AssignPixels(*frame.mask, depth, cylinders, axes, camera, options, parts);
 
   CrossSectionMeasurements out{};
   for (int p = 0; p < kBodyPartCount; ++p) {
-    PartGeometry& g = parts[p];
-    if (!g.measurable) continue;
-    const ProjectedPartAxis& axis = *axes[p];
-    for (int k = 0; k < kShapeRings; ++k) {
-      const RingSlice& slice = g.slices[k];
-      if (!slice.usable) continue;
-      const EdgeTest is_edge{labels, depth, options.depth_scale_m, options.depth_tolerance_m};
-      std::vector<double> plus, minus;
-      for (size_t line = 0; line < g.lines[k].size(); ++line) {
-        const double v = slice.v_lo + line + 0.5;
-        const auto run = AxisRun(g.lines[k][line], labels, axis, v);
-        if (!run) continue;
-        if (!is_edge(run->second.x, run->second.y, axis.normal, p) ||
-            !is_edge(run->first.x, run->first.y, -axis.normal, p))
-          continue;
-        plus.push_back(run->second.offset + 0.5);
-        minus.push_back(run->first.offset - 0.5);
-      }
-      if (static_cast<int>(plus.size()) < options.min_lines) continue;
-      const Eigen::Vector2d on_axis = axis.a + slice.v_centre * axis.dir;
-      const Eigen::Vector2d edge_plus = on_axis + Median(plus) * axis.normal;
-      const Eigen::Vector2d edge_minus = on_axis + Median(minus) * axis.normal;
-      // The 3D direction across the axis that the image's +normal side shows.
-      const double z = slice.centre.z();
-      Eigen::Vector3d side =
-          camera.Unproject(on_axis + axis.normal, z) - camera.Unproject(on_axis, z);
-      side -= side.dot(g.u) * g.u;
-      if (!(side.norm() > 0)) continue;
-      const auto h_plus = SupportAtEdge(camera, edge_plus, slice.centre, g.u, side);
-      const auto h_minus = SupportAtEdge(camera, edge_minus, slice.centre, g.u, -side);
-      if (!h_plus || !h_minus) continue;
-      const double r = g.cylinder.radius;
-      const double q = (h_plus->h + h_minus->h) / (2 * r);
-      if (!std::isfinite(q) || !(q > 0)) continue;
-      RingMeasurement m;
-      m.t = slice.t;
-      m.radius_m = r;
-      m.half_width = q;
-      if (g.width_direction) {
-        const double cp = h_plus->normal.dot(*g.width_direction);
-        const double cm = h_minus->normal.dot(*g.width_direction);
-        m.width_weight = std::array<double, 2>{cp * cp, cm * cm};
-      }
-      out[p][k] = m;
-    }
+    if (!parts[p].measurable) continue;
+    for (int k = 0; k < kShapeRings; ++k)
+      if (parts[p].slices[k].usable)
+        out[p][k] = MeasureRing(parts[p], k, p, *axes[p], labels, depth, camera, options);
   }
   return out;
 }

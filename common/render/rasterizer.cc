@@ -62,6 +62,61 @@ bool IsTopLeft(const ScreenVertex& from, const ScreenVertex& to) {
   return (dy == 0 && dx > 0) || dy < 0;
 }
 
+// A vertex on screen: its projection in fixed point, and 1 / z.
+ScreenVertex ToScreen(const PinholeCamera& camera, const Eigen::Vector3d& p) {
+  const double u = camera.fx * p.x() / p.z() + camera.cx;
+  const double w = camera.fy * p.y() / p.z() + camera.cy;
+  return {std::llround(u * kSubpixelScale), std::llround(w * kSubpixelScale), 1.0 / p.z()};
+}
+
+// The edge function of p -> q at fixed-point (x, y): twice the signed area of (p, q, (x, y)).
+int64_t Edge(const ScreenVertex& p, const ScreenVertex& q, int64_t x, int64_t y) {
+  return (q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x);
+}
+
+// The pixels whose centres lie in a triangle's bounding box, within the image; empty when
+// x0 > x1 or y0 > y1.
+struct PixelBox {
+  int x0, x1, y0, y1;
+};
+
+PixelBox CoveredPixels(const ScreenVertex (&s)[3], int width, int height) {
+  const int64_t min_x = std::min({s[0].x, s[1].x, s[2].x});
+  const int64_t max_x = std::max({s[0].x, s[1].x, s[2].x});
+  const int64_t min_y = std::min({s[0].y, s[1].y, s[2].y});
+  const int64_t max_y = std::max({s[0].y, s[1].y, s[2].y});
+  auto ceil_px = [](int64_t f) { return (f + (1 << kSubpixelBits) - 1) >> kSubpixelBits; };
+  PixelBox box;
+  box.x0 = static_cast<int>(std::max<int64_t>(0, ceil_px(min_x)));
+  box.x1 = static_cast<int>(std::min<int64_t>(width - 1, max_x >> kSubpixelBits));
+  box.y0 = static_cast<int>(std::max<int64_t>(0, ceil_px(min_y)));
+  box.y1 = static_cast<int>(std::min<int64_t>(height - 1, max_y >> kSubpixelBits));
+  return box;
+}
+
+// A counter-clockwise triangle's edge functions at pixel (x0, y0), their steps per pixel in
+// x and y, and the top-left rule's bias. Edge k is opposite vertex k: edge 0 = (1 -> 2),
+// 1 = (2 -> 0), 2 = (0 -> 1).
+struct EdgeFunctions {
+  int64_t row[3], step_x[3], step_y[3], bias[3];
+};
+
+EdgeFunctions SetUpEdges(const ScreenVertex (&s)[3], int x0, int y0) {
+  const int from[3] = {1, 2, 0}, to[3] = {2, 0, 1};
+  EdgeFunctions edges;
+  const int64_t px0 = static_cast<int64_t>(x0) << kSubpixelBits;
+  const int64_t py0 = static_cast<int64_t>(y0) << kSubpixelBits;
+  for (int k = 0; k < 3; ++k) {
+    const ScreenVertex& p = s[from[k]];
+    const ScreenVertex& q = s[to[k]];
+    edges.row[k] = Edge(p, q, px0, py0);
+    edges.step_x[k] = -(q.y - p.y) << kSubpixelBits;
+    edges.step_y[k] = (q.x - p.x) << kSubpixelBits;
+    edges.bias[k] = IsTopLeft(p, q) ? 0 : -1;
+  }
+  return edges;
+}
+
 }  // namespace
 
 void RasterOptions::Check() const {
@@ -76,8 +131,7 @@ Rasterizer::Rasterizer(const PinholeCamera& camera, const RasterOptions& options
   camera.Check();
   options.Check();
   REENACT_CHECK(camera.distortion.IsZero(), "the rasterizer needs an undistorted camera");
-  depth_ = Image<double>(camera.width, camera.height, 1,
-                         std::numeric_limits<double>::infinity());
+  depth_ = Image<double>(camera.width, camera.height, 1, std::numeric_limits<double>::infinity());
 }
 
 void Rasterizer::Clear() {
@@ -98,8 +152,8 @@ void Rasterizer::DrawMesh(std::span<const RasterVertex> vertices,
   }
 }
 
-void Rasterizer::DrawTriangle(const RasterVertex& a, const RasterVertex& b,
-                              const RasterVertex& c, int primitive_id, FragmentShader shader) {
+void Rasterizer::DrawTriangle(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c,
+                              int primitive_id, FragmentShader shader) {
   REENACT_CHECK(a.position.allFinite() && b.position.allFinite() && c.position.allFinite(),
                 "triangle vertices must be finite");
   ++stats_.triangles_submitted;
@@ -114,10 +168,10 @@ void Rasterizer::DrawTriangle(const RasterVertex& a, const RasterVertex& b,
   const double fx = camera_.fx, fy = camera_.fy, cx = camera_.cx, cy = camera_.cy;
   std::array<Plane, 6> planes = {{
       {Eigen::Vector3d(0, 0, 1), -options_.near_z},
-      {Eigen::Vector3d(fx, 0, cx + guard_x), 0},                           // u >= -guard
-      {Eigen::Vector3d(-fx, 0, camera_.width - 1 + guard_x - cx), 0},      // u <= W-1+guard
-      {Eigen::Vector3d(0, fy, cy + guard_y), 0},                           // v >= -guard
-      {Eigen::Vector3d(0, -fy, camera_.height - 1 + guard_y - cy), 0},     // v <= H-1+guard
+      {Eigen::Vector3d(fx, 0, cx + guard_x), 0},                        // u >= -guard
+      {Eigen::Vector3d(-fx, 0, camera_.width - 1 + guard_x - cx), 0},   // u <= W-1+guard
+      {Eigen::Vector3d(0, fy, cy + guard_y), 0},                        // v >= -guard
+      {Eigen::Vector3d(0, -fy, camera_.height - 1 + guard_y - cy), 0},  // v <= H-1+guard
       {Eigen::Vector3d(0, 0, -1), options_.far_z},
   }};
   const int plane_count = std::isfinite(options_.far_z) ? 6 : 5;
@@ -141,7 +195,8 @@ void Rasterizer::DrawTriangle(const RasterVertex& a, const RasterVertex& b,
     n = ClipPolygon(planes[p], in, n, out, options_.attribute_count);
     std::swap(in, out);
   }
-  for (int i = 1; i + 1 < n; ++i) RasterizeClipped(in[0], in[i], in[i + 1], primitive_id, front, shader);
+  for (int i = 1; i + 1 < n; ++i)
+    RasterizeClipped(in[0], in[i], in[i + 1], primitive_id, front, shader);
 }
 
 void Rasterizer::RasterizeClipped(const RasterVertex& a, const RasterVertex& b,
@@ -149,16 +204,8 @@ void Rasterizer::RasterizeClipped(const RasterVertex& a, const RasterVertex& b,
                                   FragmentShader shader) {
   const RasterVertex* v[3] = {&a, &b, &c};
   ScreenVertex s[3];
-  for (int i = 0; i < 3; ++i) {
-    const Eigen::Vector3d& p = v[i]->position;
-    const double u = camera_.fx * p.x() / p.z() + camera_.cx;
-    const double w = camera_.fy * p.y() / p.z() + camera_.cy;
-    s[i] = {std::llround(u * kSubpixelScale), std::llround(w * kSubpixelScale), 1.0 / p.z()};
-  }
-  auto edge = [](const ScreenVertex& p, const ScreenVertex& q, int64_t x, int64_t y) {
-    return (q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x);
-  };
-  int64_t area = edge(s[0], s[1], s[2].x, s[2].y);
+  for (int i = 0; i < 3; ++i) s[i] = ToScreen(camera_, v[i]->position);
+  int64_t area = Edge(s[0], s[1], s[2].x, s[2].y);
   if (area == 0) return;
   if (area < 0) {
     std::swap(s[1], s[2]);
@@ -167,38 +214,19 @@ void Rasterizer::RasterizeClipped(const RasterVertex& a, const RasterVertex& b,
   }
   ++stats_.triangles_rasterized;
 
-  const int64_t min_x = std::min({s[0].x, s[1].x, s[2].x});
-  const int64_t max_x = std::max({s[0].x, s[1].x, s[2].x});
-  const int64_t min_y = std::min({s[0].y, s[1].y, s[2].y});
-  const int64_t max_y = std::max({s[0].y, s[1].y, s[2].y});
-  auto ceil_px = [](int64_t f) { return (f + (1 << kSubpixelBits) - 1) >> kSubpixelBits; };
-  const int x0 = static_cast<int>(std::max<int64_t>(0, ceil_px(min_x)));
-  const int x1 = static_cast<int>(std::min<int64_t>(camera_.width - 1, max_x >> kSubpixelBits));
-  const int y0 = static_cast<int>(std::max<int64_t>(0, ceil_px(min_y)));
-  const int y1 = static_cast<int>(std::min<int64_t>(camera_.height - 1, max_y >> kSubpixelBits));
+  const PixelBox box = CoveredPixels(s, camera_.width, camera_.height);
+  const int x0 = box.x0, x1 = box.x1, y0 = box.y0, y1 = box.y1;
   if (x0 > x1 || y0 > y1) return;
-
-  // Edge k is opposite vertex k: edge 0 = (1 -> 2), 1 = (2 -> 0), 2 = (0 -> 1).
-  const int from[3] = {1, 2, 0}, to[3] = {2, 0, 1};
-  int64_t row[3], step_x[3], step_y[3], bias[3];
-  const int64_t px0 = static_cast<int64_t>(x0) << kSubpixelBits;
-  const int64_t py0 = static_cast<int64_t>(y0) << kSubpixelBits;
-  for (int k = 0; k < 3; ++k) {
-    const ScreenVertex& p = s[from[k]];
-    const ScreenVertex& q = s[to[k]];
-    row[k] = edge(p, q, px0, py0);
-    step_x[k] = -(q.y - p.y) << kSubpixelBits;
-    step_y[k] = (q.x - p.x) << kSubpixelBits;
-    bias[k] = IsTopLeft(p, q) ? 0 : -1;
-  }
+  EdgeFunctions edges = SetUpEdges(s, x0, y0);
+  int64_t* row = edges.row;
+  const int64_t *step_x = edges.step_x, *step_y = edges.step_y, *bias = edges.bias;
 
   const int attribute_count = options_.attribute_count;
   const double inv_area = 1.0 / static_cast<double>(area);
   // Attributes pre-divided by z, so that interpolation is linear in screen space.
   double attr_over_z[3][kMaxRasterAttributes];
   for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < attribute_count; ++k)
-      attr_over_z[i][k] = v[i]->attributes[k] * s[i].inv_z;
+    for (int k = 0; k < attribute_count; ++k) attr_over_z[i][k] = v[i]->attributes[k] * s[i].inv_z;
 
   RasterFragment fragment;
   fragment.primitive_id = primitive_id;

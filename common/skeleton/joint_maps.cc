@@ -77,6 +77,7 @@ struct NameRow {
   std::vector<std::vector<std::string>> alternatives;  // each: names averaged with equal weight
 };
 
+// Long as one flat table of names: split, the rows would only be harder to compare.
 const std::vector<NameRow>& NameRows() {
   static const std::vector<NameRow> rows = {
       {Joint::kHead, {{"head"}, {"skeletonneckjoint2"}}},

@@ -41,51 +41,58 @@ TextureIndex::TextureIndex(std::span<const Skeleton> stored, std::span<const boo
 int TextureIndex::Build(int begin, int end, int leaf_size) {
   const int id = static_cast<int>(nodes_.size());
   nodes_.emplace_back();
-  {
-    Node& node = nodes_[id];
-    node.begin = begin;
-    node.end = end;
-    std::fill(std::begin(node.lo), std::end(node.lo), std::numeric_limits<double>::infinity());
-    std::fill(std::begin(node.hi), std::end(node.hi), -std::numeric_limits<double>::infinity());
-    std::fill(std::begin(node.centre), std::end(node.centre), 0.0);
-    std::fill(std::begin(node.radius), std::end(node.radius), 0.0);
-    node.ball_radius = 0;
-    int count[kOffsets] = {};
-    for (int f = begin; f < end; ++f) {
-      node.present_mask |= present_[f];
-      node.missing_mask |= static_cast<uint16_t>(~present_[f] & ((1u << kOffsets) - 1));
-      const double* o = &offset_[static_cast<size_t>(f) * kDims];
-      for (int j = 0; j < kOffsets; ++j) {
-        if (!(present_[f] & (1u << j))) continue;
-        ++count[j];
-        for (int d = 3 * j; d < 3 * j + 3; ++d) {
-          node.lo[d] = std::min(node.lo[d], o[d]);
-          node.hi[d] = std::max(node.hi[d], o[d]);
-          node.centre[d] += o[d];
-        }
+  FitNode(nodes_[id], begin, end);
+  if (end - begin <= leaf_size) return id;
+  const int mid = begin + (end - begin) / 2;
+  if (!SplitAt(begin, mid, end, nodes_[id].centre)) return id;  // duplicates: one leaf
+  const int left = Build(begin, mid, leaf_size);
+  const int right = Build(mid, end, leaf_size);
+  nodes_[id].left = left;
+  nodes_[id].right = right;
+  return id;
+}
+
+void TextureIndex::FitNode(Node& node, int begin, int end) const {
+  node.begin = begin;
+  node.end = end;
+  std::fill(std::begin(node.lo), std::end(node.lo), std::numeric_limits<double>::infinity());
+  std::fill(std::begin(node.hi), std::end(node.hi), -std::numeric_limits<double>::infinity());
+  std::fill(std::begin(node.centre), std::end(node.centre), 0.0);
+  std::fill(std::begin(node.radius), std::end(node.radius), 0.0);
+  node.ball_radius = 0;
+  int count[kOffsets] = {};
+  for (int f = begin; f < end; ++f) {
+    node.present_mask |= present_[f];
+    node.missing_mask |= static_cast<uint16_t>(~present_[f] & ((1u << kOffsets) - 1));
+    const double* o = &offset_[static_cast<size_t>(f) * kDims];
+    for (int j = 0; j < kOffsets; ++j) {
+      if (!(present_[f] & (1u << j))) continue;
+      ++count[j];
+      for (int d = 3 * j; d < 3 * j + 3; ++d) {
+        node.lo[d] = std::min(node.lo[d], o[d]);
+        node.hi[d] = std::max(node.hi[d], o[d]);
+        node.centre[d] += o[d];
       }
-    }
-    for (int j = 0; j < kOffsets; ++j)
-      for (int d = 3 * j; d < 3 * j + 3; ++d) node.centre[d] /= std::max(count[j], 1);
-    for (int f = begin; f < end; ++f) {
-      const double* o = &offset_[static_cast<size_t>(f) * kDims];
-      double sum = 0;
-      for (int j = 0; j < kOffsets; ++j) {
-        if (!(present_[f] & (1u << j))) continue;
-        const double r = (Eigen::Map<const Eigen::Vector3d>(&o[3 * j]) -
-                          Eigen::Map<const Eigen::Vector3d>(&node.centre[3 * j]))
-                             .norm();
-        node.radius[j] = std::max(node.radius[j], r);
-        sum += r;
-      }
-      node.ball_radius = std::max(node.ball_radius, sum);
     }
   }
-  if (end - begin <= leaf_size) return id;
+  for (int j = 0; j < kOffsets; ++j)
+    for (int d = 3 * j; d < 3 * j + 3; ++d) node.centre[d] /= std::max(count[j], 1);
+  for (int f = begin; f < end; ++f) {
+    const double* o = &offset_[static_cast<size_t>(f) * kDims];
+    double sum = 0;
+    for (int j = 0; j < kOffsets; ++j) {
+      if (!(present_[f] & (1u << j))) continue;
+      const double r = (Eigen::Map<const Eigen::Vector3d>(&o[3 * j]) -
+                        Eigen::Map<const Eigen::Vector3d>(&node.centre[3 * j]))
+                           .norm();
+      node.radius[j] = std::max(node.radius[j], r);
+      sum += r;
+    }
+    node.ball_radius = std::max(node.ball_radius, sum);
+  }
+}
 
-  // Split by the two far frames a and b (a farthest from the centre, b farthest from a): the
-  // half nearer to a against the half nearer to b, which follows the data's shape.
-  const Node& node = nodes_[id];
+bool TextureIndex::SplitAt(int begin, int mid, int end, const double* centre) {
   auto distance = [&](int f, const double* x) {
     const double* o = &offset_[static_cast<size_t>(f) * kDims];
     double sum = 0;
@@ -102,21 +109,24 @@ int TextureIndex::Build(int begin, int end, int leaf_size) {
       if (const double dist = distance(f, x); dist > best_distance) best_distance = dist, best = f;
     return std::pair{best, best_distance};
   };
-  const int a = farthest(node.centre).first;
+  const int a = farthest(centre).first;
   double pa[kDims], pb[kDims];
   std::copy_n(&offset_[static_cast<size_t>(a) * kDims], kDims, pa);
   const auto [b, spread] = farthest(pa);
-  if (spread == 0) return id;  // all frames identical (duplicates): one leaf
+  if (spread == 0) return false;
   std::copy_n(&offset_[static_cast<size_t>(b) * kDims], kDims, pb);
   std::vector<double> key(end - begin);
   for (int f = begin; f < end; ++f) key[f - begin] = distance(f, pa) - distance(f, pb);
 
-  const int mid = begin + (end - begin) / 2;
   std::vector<int> order(end - begin);
   std::iota(order.begin(), order.end(), begin);
   std::nth_element(order.begin(), order.begin() + (mid - begin), order.end(),
                    [&](int x, int y) { return key[x - begin] < key[y - begin]; });
-  // Apply the permutation to the range's frames, offsets and masks.
+  Permute(begin, order);
+  return true;
+}
+
+void TextureIndex::Permute(int begin, const std::vector<int>& order) {
   std::vector<int> frames(order.size());
   std::vector<double> offsets(order.size() * kDims);
   std::vector<uint16_t> present(order.size());
@@ -128,12 +138,6 @@ int TextureIndex::Build(int begin, int end, int leaf_size) {
   std::copy(frames.begin(), frames.end(), frame_.begin() + begin);
   std::copy(present.begin(), present.end(), present_.begin() + begin);
   std::copy(offsets.begin(), offsets.end(), offset_.begin() + static_cast<size_t>(begin) * kDims);
-
-  const int left = Build(begin, mid, leaf_size);
-  const int right = Build(mid, end, leaf_size);
-  nodes_[id].left = left;
-  nodes_[id].right = right;
-  return id;
 }
 
 double TextureIndex::LowerBound(const Node& node, const double* q, uint16_t query_mask,

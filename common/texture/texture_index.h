@@ -94,6 +94,14 @@ class TextureIndex {
   };
 
   int Build(int begin, int end, int leaf_size);
+  // Fills a node's masks, boxes, centre and radii from the frames in [begin, end).
+  void FitNode(Node& node, int begin, int end) const;
+  // Reorders [begin, end) by the two far frames a and b (a farthest from `centre`, b farthest
+  // from a): [begin, mid) the half nearer to a, [mid, end) the half nearer to b, which follows
+  // the data's shape. False, leaving the order, when all frames are identical.
+  bool SplitAt(int begin, int mid, int end, const double* centre);
+  // Puts the frames, offsets and masks of tree positions order[r] at begin + r.
+  void Permute(int begin, const std::vector<int>& order);
   static double LowerBound(const Node& node, const double* query, uint16_t query_mask,
                            double missing_cost);
 

@@ -2,7 +2,6 @@
 
 #include <cctype>
 #include <cmath>
-
 #include <nlohmann/json.hpp>
 
 #include "proto/clip/content_hash.h"
@@ -84,8 +83,7 @@ void CheckSkeletonDefinition(const JsonField& f) {
   if (parts.json().size() != static_cast<size_t>(kBodyPartCount))
     parts.Fail("must name exactly " + std::to_string(kBodyPartCount) + " parts");
   for (const auto& [name, value] : parts.json().items()) {
-    if (!PartFromName(name))
-      parts.Fail("names unknown part \"" + name + "\"");
+    if (!PartFromName(name)) parts.Fail("names unknown part \"" + name + "\"");
   }
   for (int i = 0; i < kBodyPartCount; ++i) {
     const auto part = static_cast<BodyPart>(i);
@@ -99,6 +97,90 @@ void CheckSkeletonDefinition(const JsonField& f) {
   }
 }
 
+// Title, description, author and capture time.
+void ReadDescription(const JsonField& root, ClipManifest& m) {
+  m.title = LimitedString(root["title"], kMaxManifestNameBytes);
+  m.description = LimitedString(root["description"], kMaxManifestDescriptionBytes);
+  m.author = LimitedString(root["author"], kMaxManifestNameBytes);
+  const JsonField time = root["capture_time"];
+  m.capture_time = time.String();
+  if (!IsIso8601Utc(m.capture_time))
+    time.Fail("= \"" + m.capture_time + "\" is not an ISO 8601 UTC time like 2024-05-01T12:34:56Z");
+}
+
+ClipLocation LocationFromJson(const JsonField& loc) {
+  ClipLocation location;
+  location.lat_deg = loc["lat_deg"].NumberIn({-90, 90});
+  location.lon_deg = loc["lon_deg"].NumberIn({-180, 180});
+  location.alt_m = loc["alt_m"].Number();
+  location.accuracy_m = loc["accuracy_m"].NumberIn({0, kInf, false, true});
+  if (loc.Has("heading_deg") && !loc.json()["heading_deg"].is_null())
+    location.heading_deg = loc["heading_deg"].NumberIn({0, 360, false, true});
+  return location;
+}
+
+Eigen::Vector3d WorldUpFromJson(const JsonField& up) {
+  up.ExpectArray(3);
+  Eigen::Vector3d world_up;
+  for (int i = 0; i < 3; ++i) world_up[i] = up[static_cast<size_t>(i)].Number();
+  if (std::abs(world_up.norm() - 1.0) > 1e-3)
+    up.Fail("has length " + internal::FormatNumber(world_up.norm()) +
+            " but must be a unit vector (within 1e-3)");
+  return world_up;
+}
+
+std::array<double, kBodyPartCount> RadiusRatiosFromJson(const JsonField& ratios) {
+  ratios.ExpectObject();
+  for (const auto& [name, value] : ratios.json().items())
+    if (!PartFromName(name)) ratios.Fail("names unknown part \"" + name + "\"");
+  std::array<double, kBodyPartCount> radius_ratio{};
+  for (int i = 0; i < kBodyPartCount; ++i)
+    radius_ratio[i] = ratios[PartName(static_cast<BodyPart>(i))].NumberIn({0, 2, true, false});
+  return radius_ratio;
+}
+
+// Frame count (that of the frame parts listed), representative frame and frame rate, checked
+// against duration_s when given.
+void ReadFrameTiming(const JsonField& root, size_t frame_parts, ClipManifest& m) {
+  m.frame_count = root["frame_count"].IntegerIn(1, INT32_MAX);
+  if (static_cast<size_t>(m.frame_count) != frame_parts)
+    root["frame_count"].Fail("= " + std::to_string(m.frame_count) + " but parts.frames lists " +
+                             std::to_string(frame_parts) + " frames");
+  m.representative_frame = root["representative_frame"].IntegerIn(0, m.frame_count - 1);
+  m.frame_rate_hz = root["frame_rate_hz"].NumberIn({0, 1000, true, false});
+  if (root.Has("duration_s")) {
+    const double duration = root["duration_s"].Number();
+    if (std::abs(duration - m.DurationS()) > 1e-6 * std::max(1.0, m.DurationS()))
+      root["duration_s"].Fail(
+          "= " + internal::FormatNumber(duration) +
+          " but frame_count / frame_rate_hz = " + internal::FormatNumber(m.DurationS()));
+  }
+}
+
+MapSummary MapFromJson(const JsonField& map) {
+  MapSummary summary;
+  summary.point_count = map["point_count"].IntegerIn(0, INT32_MAX);
+  summary.descriptor = map["descriptor"].String();
+  if (summary.descriptor != kMapDescriptorOrb256)
+    map["descriptor"].Fail("= \"" + summary.descriptor + "\" is not a known descriptor (\"" +
+                           std::string(kMapDescriptorOrb256) + "\")");
+  return summary;
+}
+
+std::vector<int64_t> FlaggedFramesFromJson(const JsonField& flagged, int64_t frame_count) {
+  std::vector<int64_t> frames;
+  const size_t count = flagged.ExpectArray();
+  for (size_t i = 0; i < count; ++i) {
+    const int64_t n = flagged[i].IntegerIn(0, frame_count - 1);
+    if (!frames.empty() && n <= frames.back())
+      flagged[i].Fail("= " + std::to_string(n) +
+                      " is not above the entry before it (the list "
+                      "must be ascending without repeats)");
+    frames.push_back(n);
+  }
+  return frames;
+}
+
 ClipManifest ManifestFromJson(const json& document) {
   const JsonField root(document, "manifest");
   root.ExpectObject();
@@ -109,77 +191,23 @@ ClipManifest ManifestFromJson(const json& document) {
                                    std::to_string(kManifestFormatVersion) + ")"};
 
   ClipManifest m;
-  m.title = LimitedString(root["title"], kMaxManifestNameBytes);
-  m.description = LimitedString(root["description"], kMaxManifestDescriptionBytes);
-  m.author = LimitedString(root["author"], kMaxManifestNameBytes);
-  const JsonField time = root["capture_time"];
-  m.capture_time = time.String();
-  if (!IsIso8601Utc(m.capture_time))
-    time.Fail("= \"" + m.capture_time + "\" is not an ISO 8601 UTC time like 2024-05-01T12:34:56Z");
-
-  const JsonField loc = root["location"];
-  m.location.lat_deg = loc["lat_deg"].NumberIn({-90, 90});
-  m.location.lon_deg = loc["lon_deg"].NumberIn({-180, 180});
-  m.location.alt_m = loc["alt_m"].Number();
-  m.location.accuracy_m = loc["accuracy_m"].NumberIn({0, kInf, false, true});
-  if (loc.Has("heading_deg") && !loc.json()["heading_deg"].is_null())
-    m.location.heading_deg = loc["heading_deg"].NumberIn({0, 360, false, true});
-
+  ReadDescription(root, m);
+  m.location = LocationFromJson(root["location"]);
   m.color_camera = CameraFromJson(root["color_camera"]);
   m.depth_camera = CameraFromJson(root["depth_camera"]);
   m.depth_scale_m = root["depth_scale_m"].NumberIn({0, 1, true, false});
-
-  const JsonField up = root["world_up"];
-  up.ExpectArray(3);
-  for (int i = 0; i < 3; ++i) m.world_up[i] = up[static_cast<size_t>(i)].Number();
-  if (std::abs(m.world_up.norm() - 1.0) > 1e-3)
-    up.Fail("has length " + internal::FormatNumber(m.world_up.norm()) +
-            " but must be a unit vector (within 1e-3)");
-
+  m.world_up = WorldUpFromJson(root["world_up"]);
   CheckSkeletonDefinition(root["skeleton"]);
-
-  const JsonField ratios = root["radius_ratio"];
-  ratios.ExpectObject();
-  for (const auto& [name, value] : ratios.json().items())
-    if (!PartFromName(name)) ratios.Fail("names unknown part \"" + name + "\"");
-  for (int i = 0; i < kBodyPartCount; ++i)
-    m.radius_ratio[i] = ratios[PartName(static_cast<BodyPart>(i))].NumberIn({0, 2, true, false});
+  m.radius_ratio = RadiusRatiosFromJson(root["radius_ratio"]);
 
   const JsonField parts = root["parts"];
   const JsonField frames = parts["frames"];
   const size_t frame_parts = frames.ExpectArray();
-  m.frame_count = root["frame_count"].IntegerIn(1, INT32_MAX);
-  if (static_cast<size_t>(m.frame_count) != frame_parts)
-    root["frame_count"].Fail("= " + std::to_string(m.frame_count) + " but parts.frames lists " +
-                             std::to_string(frame_parts) + " frames");
-  m.representative_frame = root["representative_frame"].IntegerIn(0, m.frame_count - 1);
-  m.frame_rate_hz = root["frame_rate_hz"].NumberIn({0, 1000, true, false});
-  if (root.Has("duration_s")) {
-    const double duration = root["duration_s"].Number();
-    if (std::abs(duration - m.DurationS()) > 1e-6 * std::max(1.0, m.DurationS()))
-      root["duration_s"].Fail("= " + internal::FormatNumber(duration) +
-                              " but frame_count / frame_rate_hz = " +
-                              internal::FormatNumber(m.DurationS()));
-  }
-
-  const JsonField map = root["map"];
-  m.map.point_count = map["point_count"].IntegerIn(0, INT32_MAX);
-  m.map.descriptor = map["descriptor"].String();
-  if (m.map.descriptor != kMapDescriptorOrb256)
-    map["descriptor"].Fail("= \"" + m.map.descriptor + "\" is not a known descriptor (\"" +
-                           std::string(kMapDescriptorOrb256) + "\")");
-
-  if (root.Has("flagged_skeleton_frames")) {
-    const JsonField flagged = root["flagged_skeleton_frames"];
-    const size_t count = flagged.ExpectArray();
-    for (size_t i = 0; i < count; ++i) {
-      const int64_t n = flagged[i].IntegerIn(0, m.frame_count - 1);
-      if (!m.flagged_skeleton_frames.empty() && n <= m.flagged_skeleton_frames.back())
-        flagged[i].Fail("= " + std::to_string(n) + " is not above the entry before it (the list "
-                        "must be ascending without repeats)");
-      m.flagged_skeleton_frames.push_back(n);
-    }
-  }
+  ReadFrameTiming(root, frame_parts, m);
+  m.map = MapFromJson(root["map"]);
+  if (root.Has("flagged_skeleton_frames"))
+    m.flagged_skeleton_frames =
+        FlaggedFramesFromJson(root["flagged_skeleton_frames"], m.frame_count);
 
   m.frame_parts.reserve(frame_parts);
   for (size_t i = 0; i < frame_parts; ++i) m.frame_parts.push_back(PartFromJson(frames[i]));
@@ -206,8 +234,7 @@ bool IsIso8601Utc(std::string_view t) {
   if (t.size() < 20 || t.back() != 'Z') return false;
   if (t[4] != '-' || t[7] != '-' || t[10] != 'T' || t[13] != ':' || t[16] != ':') return false;
   const std::string_view year = t.substr(0, 4), month = t.substr(5, 2), day = t.substr(8, 2),
-                         hour = t.substr(11, 2), minute = t.substr(14, 2),
-                         second = t.substr(17, 2);
+                         hour = t.substr(11, 2), minute = t.substr(14, 2), second = t.substr(17, 2);
   for (std::string_view part : {year, month, day, hour, minute, second})
     if (!AllDigits(part)) return false;
   const std::string_view rest = t.substr(19, t.size() - 20);

@@ -1,7 +1,6 @@
 #include "viewer-client/output/mp4_writer.h"
 
 #include <cmath>
-
 #include <opencv2/videoio.hpp>
 
 #include "viewer-client/output/cv_image.h"
@@ -23,8 +22,7 @@ Mp4Writer::~Mp4Writer() {
   if (state_) Close();
 }
 
-Expected<Mp4Writer> Mp4Writer::Open(const std::string& path, int width, int height,
-                                    double fps) {
+Expected<Mp4Writer> Mp4Writer::Open(const std::string& path, int width, int height, double fps) {
   if (width <= 0 || height <= 0 || !(fps > 0) || !std::isfinite(fps)) {
     return MakeError("invalid_argument",
                      "cannot open video " + path + ": size and frame rate must be positive");
@@ -72,5 +70,19 @@ void Mp4Writer::Close() {
 int Mp4Writer::frames_written() const { return state_->frames; }
 const std::string& Mp4Writer::codec() const { return state_->codec; }
 const std::string& Mp4Writer::path() const { return state_->path; }
+
+Status WriteMp4(const std::vector<ImageRgb8>& frames, const std::string& path, int width,
+                int height, double fps, std::string* written_path, std::string* warning) {
+  auto writer = Mp4Writer::Open(path, width, height, fps);
+  if (!writer.ok()) {
+    *warning = writer.error().message;
+    return {};
+  }
+  for (const ImageRgb8& f : frames)
+    if (Status s = writer->Write(f); !s.ok()) return s.error();
+  writer->Close();
+  *written_path = path;
+  return {};
+}
 
 }  // namespace reenact::viewer

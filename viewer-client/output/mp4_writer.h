@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "common/error/expected.h"
 #include "common/image/image.h"
@@ -38,5 +39,11 @@ class Mp4Writer {
   explicit Mp4Writer(std::unique_ptr<State> state);
   std::unique_ptr<State> state_;
 };
+
+// Writes `frames` (RGB, width x height) to a new MP4 at `path`, fps frames per second, and sets
+// *written_path to it. Where the file cannot be opened (no encoder) the video is skipped
+// instead: *warning says why. Errors: those of Write.
+Status WriteMp4(const std::vector<ImageRgb8>& frames, const std::string& path, int width,
+                int height, double fps, std::string* written_path, std::string* warning);
 
 }  // namespace reenact::viewer

@@ -180,9 +180,9 @@ ArFrame ArCompositor::Compose(ArLocatedFrame located, std::optional<int> clip_fr
   out.composite_ms = MsSince(t);
   if (out.reloc.viewer_from_world) {
     t = Clock::now();
-    ReenactedFrame rf = reenactment_.Build(out.clip_frame, render_camera_,
-                                           *out.reloc.viewer_from_world, std::ref(textures_),
-                                           &selection_history_);
+    ReenactedFrame rf =
+        reenactment_.Build(out.clip_frame, render_camera_, *out.reloc.viewer_from_world,
+                           std::ref(textures_), &selection_history_);
     rf.draw.background = &background;
     rf.draw.textured = options_.textured;
     if (!options_.draw_skeleton) rf.draw.bones.clear();
@@ -247,6 +247,79 @@ ArPlaySummary ArSummaryBuilder::summary() const {
   return s;
 }
 
+namespace {
+
+// Writes an AR frame's output as frames/frame_NNNN.png (and its subject mask as
+// mask_NNNN.png when asked); returns the frame's file name.
+Expected<std::string> WriteArFramePngs(const ArFrame& frame, const ArPlayOptions& options) {
+  const int i = frame.camera_frame;
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d.png", i);
+  if (Status s = WritePng((options.out_dir / "frames" / name).string(), frame.out.color); !s.ok())
+    return s.error();
+  if (options.write_masks) {
+    char mask[32];
+    std::snprintf(mask, sizeof mask, "mask_%04d.png", i);
+    if (Status s = WritePng((options.out_dir / "frames" / mask).string(), frame.out.subject_mask);
+        !s.ok())
+      return s.error();
+  }
+  return std::string(name);
+}
+
+// render.json's entry of an AR frame written as `name`.
+nlohmann::json ArFrameJson(const ArFrame& frame, const std::string& name) {
+  const RelocFrameResult& r = frame.reloc;
+  nlohmann::json f = {
+      {"output", frame.camera_frame},
+      {"timestamp_s", frame.timestamp_s},
+      {"clip_frame", frame.clip_frame},
+      {"texture_frame", frame.texture_frame},
+      {"state", std::string(RelocStatusName(r.status))},
+      {"features", r.features},
+      {"matches", r.matches},
+      {"inliers", r.inliers},
+      {"reloc_ms", r.ms},
+      {"reason", r.reason},
+      {"world_from_viewer",
+       r.viewer_from_world ? PoseJson(r.viewer_from_world->inverse()) : nlohmann::json(nullptr)},
+      {"file", std::string("frames/") + name}};
+  if (frame.true_world_from_viewer) {
+    f["true_world_from_viewer"] = PoseJson(*frame.true_world_from_viewer);
+    f["err_cm"] = frame.err_cm ? nlohmann::json(*frame.err_cm) : nlohmann::json(nullptr);
+    f["err_deg"] = frame.err_deg ? nlohmann::json(*frame.err_deg) : nlohmann::json(nullptr);
+  }
+  return f;
+}
+
+// The camera's frames through the AR pipeline, each written as PNGs, with their summary and
+// render.json's entries.
+struct ArFrames {
+  ArSummaryBuilder builder;
+  std::vector<ImageRgb8> written;
+  nlohmann::json json = nlohmann::json::array();
+};
+
+Expected<ArFrames> PlayArFrames(ArCompositor& compositor, CameraSource& camera,
+                                const ArPlayOptions& options) {
+  ArFrames frames;
+  ArPipeline pipeline(compositor, CameraFrames(camera, options.max_frames));
+  while (true) {
+    auto next = pipeline.Next();
+    if (!next.ok()) return next.error();
+    if (!next->has_value()) break;
+    const std::optional<ArFrame>& frame = *next;
+    auto name = WriteArFramePngs(*frame, options);
+    if (!name.ok()) return name.error();
+    frames.builder.Add(*frame);
+    frames.json.push_back(ArFrameJson(*frame, *name));
+    frames.written.push_back(std::move(frame->out.color));
+  }
+  return frames;
+}
+
+}  // namespace
+
 Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::ClipMap map,
                                        CameraSource& camera, const std::string& clip_id,
                                        const ArPlayOptions& options) {
@@ -264,54 +337,10 @@ Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::Cl
     return MakeError(
         "io", "cannot create output folder " + options.out_dir.string() + ": " + ec.message());
 
-  ArSummaryBuilder builder;
-  std::vector<ImageRgb8> written;
-  nlohmann::json frames_json = nlohmann::json::array();
-  ArPipeline pipeline(*compositor, CameraFrames(camera, options.max_frames));
-  while (true) {
-    auto next = pipeline.Next();
-    if (!next.ok()) return next.error();
-    if (!next->has_value()) break;
-    const std::optional<ArFrame>& frame = *next;
-    const int i = frame->camera_frame;
-    char name[32];
-    std::snprintf(name, sizeof name, "frame_%04d.png", i);
-    if (Status s = WritePng((options.out_dir / "frames" / name).string(), frame->out.color);
-        !s.ok())
-      return s.error();
-    if (options.write_masks) {
-      char mask[32];
-      std::snprintf(mask, sizeof mask, "mask_%04d.png", i);
-      if (Status s =
-              WritePng((options.out_dir / "frames" / mask).string(), frame->out.subject_mask);
-          !s.ok())
-        return s.error();
-    }
-    const RelocFrameResult& r = frame->reloc;
-    builder.Add(*frame);
-    frames_json.push_back(
-        {{"output", i},
-         {"timestamp_s", frame->timestamp_s},
-         {"clip_frame", frame->clip_frame},
-         {"texture_frame", frame->texture_frame},
-         {"state", std::string(RelocStatusName(r.status))},
-         {"features", r.features},
-         {"matches", r.matches},
-         {"inliers", r.inliers},
-         {"reloc_ms", r.ms},
-         {"reason", r.reason},
-         {"world_from_viewer",
-          r.viewer_from_world ? PoseJson(r.viewer_from_world->inverse()) : nlohmann::json(nullptr)},
-         {"file", std::string("frames/") + name}});
-    if (frame->true_world_from_viewer) {
-      nlohmann::json& f = frames_json.back();
-      f["true_world_from_viewer"] = PoseJson(*frame->true_world_from_viewer);
-      f["err_cm"] = frame->err_cm ? nlohmann::json(*frame->err_cm) : nlohmann::json(nullptr);
-      f["err_deg"] = frame->err_deg ? nlohmann::json(*frame->err_deg) : nlohmann::json(nullptr);
-    }
-    written.push_back(std::move(frame->out.color));
-  }
-  ArPlaySummary summary = builder.summary();
+  auto frames = PlayArFrames(*compositor, camera, options);
+  if (!frames.ok()) return frames.error();
+  const std::vector<ImageRgb8>& written = frames->written;
+  ArPlaySummary summary = frames->builder.summary();
   if (summary.frames == 0)
     return MakeError("empty", "camera " + camera.description() +
                                   " delivered no frames: check the path, the sequence's rgb.txt "
@@ -322,17 +351,12 @@ Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::Cl
   if (Status s = WritePng((options.out_dir / "contact_sheet.png").string(), sheet); !s.ok())
     return s.error();
   if (options.write_mp4) {
-    const std::filesystem::path mp4 = options.out_dir / "reenactment.mp4";
-    auto writer = Mp4Writer::Open(mp4.string(), intrinsics.width, intrinsics.height,
-                                  reenactment.manifest().frame_rate_hz);
-    if (writer.ok()) {
-      for (const ImageRgb8& f : written)
-        if (Status s = writer->Write(f); !s.ok()) return s.error();
-      writer->Close();
-      summary.mp4_path = mp4.string();
-    } else {
-      summary.mp4_warning = writer.error().message;
-    }
+    if (Status s =
+            WriteMp4(written, (options.out_dir / "reenactment.mp4").string(), intrinsics.width,
+                     intrinsics.height, reenactment.manifest().frame_rate_hz, &summary.mp4_path,
+                     &summary.mp4_warning);
+        !s.ok())
+      return s.error();
   }
   nlohmann::json render = {{"clip_id", clip_id},
                            {"presentation", "ar"},
@@ -345,7 +369,7 @@ Expected<ArPlaySummary> PlayArHeadless(const Reenactment& reenactment, proto::Cl
                            {"reloc_ms_median", summary.reloc_ms_median},
                            {"render_ms_median", summary.render_ms_median},
                            {"subject_light", SubjectLightJson(reenactment.subject_light())},
-                           {"frames", frames_json}};
+                           {"frames", frames->json}};
   if (summary.truth_frames > 0)
     render["truth"] = {{"frames", summary.truth_frames},
                        {"within_2cm_1deg", summary.within_2cm_1deg},

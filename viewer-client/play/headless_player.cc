@@ -11,12 +11,60 @@
 #include "viewer-client/output/contact_sheet.h"
 #include "viewer-client/output/mp4_writer.h"
 #include "viewer-client/output/png_writer.h"
-#include "viewer-client/play/texture_cache.h"
 #include "viewer-client/output/render_json.h"
+#include "viewer-client/play/texture_cache.h"
 #include "viewer-client/play/viewer_camera.h"
 #include "viewer-client/render/renderer.h"
 
 namespace reenact::viewer {
+namespace {
+
+// The orbit view's frames, rendered and written as PNGs (frames/frame_NNNN.png, and
+// mask_NNNN.png when asked), with the seconds each render took and render.json's entries.
+struct OrbitFrames {
+  std::vector<ImageRgb8> rendered;
+  std::vector<double> render_seconds;
+  nlohmann::json json = nlohmann::json::array();
+};
+
+Expected<OrbitFrames> RenderOrbit(const Reenactment& reenactment, Renderer& renderer,
+                                  const PinholeCamera& camera, const OrbitView& view, int frames,
+                                  const HeadlessPlayOptions& options) {
+  TextureCache texture_for_frame(renderer, reenactment);
+  OrbitFrames out_frames;
+  PartSelectionHistory history;
+  for (int k = 0; k < frames; ++k) {
+    ReenactedFrame rf =
+        reenactment.Build(k, camera, view.viewer_from_world, std::ref(texture_for_frame), &history);
+    rf.draw.floor = view.floor;
+    rf.draw.textured = options.textured;
+    if (!options.draw_skeleton) rf.draw.bones.clear();
+    const auto t0 = std::chrono::steady_clock::now();
+    RenderedFrame out = renderer.Render(rf.draw);
+    out_frames.render_seconds.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d.png", k);
+    if (Status s = WritePng((options.out_dir / "frames" / name).string(), out.color); !s.ok())
+      return s.error();
+    if (options.write_masks) {
+      std::snprintf(name, sizeof name, "mask_%04d.png", k);
+      if (Status s = WritePng((options.out_dir / "frames" / name).string(), out.subject_mask);
+          !s.ok())
+        return s.error();
+      std::snprintf(name, sizeof name, "frame_%04d.png", k);
+    }
+    out_frames.json.push_back({{"output", k},
+                               {"clip_frame", rf.clip_frame},
+                               {"texture_frame", rf.texture_frame},
+                               {"file", std::string("frames/") + name}});
+    out_frames.rendered.push_back(std::move(out.color));
+  }
+  return out_frames;
+}
+
+}  // namespace
+
 void HeadlessPlayOptions::Check() const {
   REENACT_CHECK(!out_dir.empty(), "out_dir must be set");
   REENACT_CHECK(max_frames == -1 || max_frames >= 1, "max_frames must be -1 or >= 1");
@@ -48,47 +96,17 @@ Expected<PlaySummary> PlayHeadless(const Reenactment& reenactment, const std::st
                      "cannot place the orbit camera: the capture sensor stands on "
                      "the subject's vertical axis");
 
-  TextureCache texture_for_frame(*renderer, reenactment);
-
   const int frames = options.max_frames < 0
                          ? reenactment.frame_count()
                          : std::min(options.max_frames, reenactment.frame_count());
-  std::vector<ImageRgb8> rendered;
-  std::vector<double> render_seconds;
-  nlohmann::json frames_json = nlohmann::json::array();
-  PartSelectionHistory history;
-  for (int k = 0; k < frames; ++k) {
-    ReenactedFrame rf = reenactment.Build(k, camera, view->viewer_from_world,
-                                          std::ref(texture_for_frame), &history);
-    rf.draw.floor = view->floor;
-    rf.draw.textured = options.textured;
-    if (!options.draw_skeleton) rf.draw.bones.clear();
-    const auto t0 = std::chrono::steady_clock::now();
-    RenderedFrame out = renderer->Render(rf.draw);
-    render_seconds.push_back(
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    char name[32];
-    std::snprintf(name, sizeof name, "frame_%04d.png", k);
-    if (Status s = WritePng((options.out_dir / "frames" / name).string(), out.color); !s.ok())
-      return s.error();
-    if (options.write_masks) {
-      std::snprintf(name, sizeof name, "mask_%04d.png", k);
-      if (Status s = WritePng((options.out_dir / "frames" / name).string(), out.subject_mask);
-          !s.ok())
-        return s.error();
-      std::snprintf(name, sizeof name, "frame_%04d.png", k);
-    }
-    frames_json.push_back({{"output", k},
-                           {"clip_frame", rf.clip_frame},
-                           {"texture_frame", rf.texture_frame},
-                           {"file", std::string("frames/") + name}});
-    rendered.push_back(std::move(out.color));
-  }
+  auto orbit = RenderOrbit(reenactment, *renderer, camera, *view, frames, options);
+  if (!orbit.ok()) return orbit.error();
+  const std::vector<ImageRgb8>& rendered = orbit->rendered;
 
   PlaySummary summary;
   summary.clip_id = clip_id;
   summary.frames = frames;
-  std::vector<double> sorted = render_seconds;
+  std::vector<double> sorted = orbit->render_seconds;
   std::sort(sorted.begin(), sorted.end());
   if (!sorted.empty() && sorted[sorted.size() / 2] > 0)
     summary.render_fps = 1.0 / sorted[sorted.size() / 2];
@@ -99,17 +117,11 @@ Expected<PlaySummary> PlayHeadless(const Reenactment& reenactment, const std::st
     return s.error();
 
   if (options.write_mp4 && !rendered.empty()) {
-    const std::filesystem::path mp4 = options.out_dir / "reenactment.mp4";
-    auto writer =
-        Mp4Writer::Open(mp4.string(), options.width, options.height, manifest.frame_rate_hz);
-    if (writer.ok()) {
-      for (const ImageRgb8& f : rendered)
-        if (Status s = writer->Write(f); !s.ok()) return s.error();
-      writer->Close();
-      summary.mp4_path = mp4.string();
-    } else {
-      summary.mp4_warning = writer.error().message;
-    }
+    if (Status s = WriteMp4(rendered, (options.out_dir / "reenactment.mp4").string(), options.width,
+                            options.height, manifest.frame_rate_hz, &summary.mp4_path,
+                            &summary.mp4_warning);
+        !s.ok())
+      return s.error();
   }
 
   const nlohmann::json render = {{"clip_id", clip_id},
@@ -119,7 +131,7 @@ Expected<PlaySummary> PlayHeadless(const Reenactment& reenactment, const std::st
                                  {"world_from_viewer", PoseJson(view->world_from_viewer)},
                                  {"render_fps", summary.render_fps},
                                  {"subject_light", SubjectLightJson(reenactment.subject_light())},
-                                 {"frames", frames_json}};
+                                 {"frames", std::move(orbit->json)}};
   std::ofstream(options.out_dir / "render.json") << render.dump(2) << "\n";
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;

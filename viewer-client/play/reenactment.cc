@@ -89,22 +89,39 @@ Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFr
   options_.Check();
   REENACT_CHECK(static_cast<int64_t>(frames_.size()) == manifest_.frame_count,
                 "frame count disagrees with the manifest");
+  const std::unique_ptr<bool[]> flagged = FlaggedFrames();
+  SteadyMotion(flagged.get());
+  IndexFrames(flagged.get());
+  FitShapes();
+  FitLight();
+
+  // The clip's own texturing's coverage now, so that the first frame drawn does not wait for it.
+  if (options_.texturing.fallback_candidates > 0) CoverageIndexOf(options_.texturing.shape);
+}
+
+std::unique_ptr<bool[]> Reenactment::FlaggedFrames() const {
+  std::unique_ptr<bool[]> flagged = std::make_unique<bool[]>(frames_.size());
+  for (size_t n = 0; n < frames_.size(); ++n) flagged[n] = false;
+  for (int64_t n : manifest_.flagged_skeleton_frames)
+    if (n >= 0 && n < manifest_.frame_count) flagged[n] = true;
+  return flagged;
+}
+
+void Reenactment::SteadyMotion(const bool* flagged) {
   std::vector<Skeleton> in_world;
   std::vector<double> times;
-  std::unique_ptr<bool[]> flagged = std::make_unique<bool[]>(frames_.size());
   for (size_t n = 0; n < frames_.size(); ++n) {
     in_world.push_back(frames_[n].skeleton_in_world);
     times.push_back(frames_[n].timestamp_s);
-    flagged[n] = false;
   }
-  for (int64_t n : manifest_.flagged_skeleton_frames)
-    if (n >= 0 && n < manifest_.frame_count) flagged[n] = true;
   steady_in_world_ = SteadySkeletonTrack(
-      in_world, times, std::span<const bool>(flagged.get(), frames_.size()), options_.steady);
+      in_world, times, std::span<const bool>(flagged, frames_.size()), options_.steady);
   if (options_.steady_motion)
     for (size_t n = 0; n < frames_.size(); ++n)
       if (!flagged[n]) frames_[n].skeleton_in_world = steady_in_world_[n];
+}
 
+void Reenactment::IndexFrames(const bool* flagged) {
   usable_ = std::make_unique<bool[]>(frames_.size());
   for (size_t n = 0; n < frames_.size(); ++n) {
     const proto::ClipFrame& f = frames_[n];
@@ -123,7 +140,9 @@ Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFr
           manifest_.color_camera.Cropped(f.crop_x, f.crop_y, f.color.width, f.color.height));
     }
   part_index_ = PartTextureIndex(skeletons_in_sensor_, part_allowed_);
+}
 
+void Reenactment::FitShapes() {
   const auto fit_frames_of = [this](std::span<const int> indices,
                                     std::vector<PinholeCamera>& cameras) {
     cameras.clear();
@@ -149,7 +168,10 @@ Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFr
           fit_frames_of(ShapeFitFrames(manifest_.representative_frame, usable, 24), fit_cameras),
           manifest_.radius_ratio, part_extensions_, {.depth_scale_m = manifest_.depth_scale_m})
           .shape;
+}
 
+void Reenactment::FitLight() {
+  const std::span<const bool> usable(usable_.get(), frames_.size());
   std::vector<LightSample> light_samples;
   for (int n : ShapeFitFrames(manifest_.representative_frame, usable, 24)) {
     const StoredTexture t = Texture(n, BodyShape::kProfiled);
@@ -163,9 +185,6 @@ Reenactment::Reenactment(proto::ClipManifest manifest, std::vector<proto::ClipFr
                        {}, &light_samples);
   }
   subject_light_ = FitSubjectLight(light_samples);
-
-  // The clip's own texturing's coverage now, so that the first frame drawn does not wait for it.
-  if (options_.texturing.fallback_candidates > 0) CoverageIndexOf(options_.texturing.shape);
 }
 
 Eigen::Vector3d Reenactment::SubjectCentre() const {

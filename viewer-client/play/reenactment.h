@@ -185,6 +185,16 @@ class Reenactment {
   PartShapes part_shapes_{};
   SubjectLightFit subject_light_{};
 
+  // Construction, in order: the flags of the frames whose skeleton the capture flagged; the
+  // steady track (replacing the unflagged frames' skeletons with steady_motion); sensor-frame
+  // skeletons, usable frames and the selection indices over them; part extensions and
+  // cross-sections; the subject light.
+  std::unique_ptr<bool[]> FlaggedFrames() const;
+  void SteadyMotion(const bool* flagged);
+  void IndexFrames(const bool* flagged);
+  void FitShapes();
+  void FitLight();
+
   // Frame n's crop camera, and its part-label map (drawn with `shape`) and depth in metres.
   PinholeCamera CropCamera(int n) const;
   VisibilityMaps VisibilityMapsOf(int n, BodyShape shape) const;

@@ -39,7 +39,6 @@ std::array<float, 16> ToFloat(const Eigen::Matrix4d& m) {
   return out;
 }
 
-
 }  // namespace
 
 struct Renderer::Impl {
@@ -80,10 +79,18 @@ struct Renderer::Impl {
   }
 
   Status Initialize(int w, int h);
+  Status MakeFlatPrograms();
+  Status MakeCylinderProgram(int variant);
+  void MakeCylinderMesh();
+  void MakeStreamedVertexArrays();
   void Resize(int w, int h);
   void DrawBackground(const ImageRgb8& image);
   void DrawFloor(const FloorGrid& floor, const std::array<float, 16>& projection);
   void DrawCylinders(const FrameDraw& frame, const std::array<float, 16>& projection);
+  void SetFrameUniforms(const FrameDraw& frame, const std::array<float, 16>& projection);
+  void SetShapeUniforms(const CylinderProgram& program, const CylinderDraw& c);
+  void BindCandidates(const CylinderProgram& program, const CylinderDraw& c, int count,
+                      bool visibility);
   void DrawBones(const FrameDraw& frame, const std::array<float, 16>& projection);
 };
 
@@ -97,6 +104,25 @@ Status Renderer::Impl::Initialize(int w, int h) {
     return MakeError("gl_unavailable",
                      std::string("OpenGL 3.3 core is required, the context offers ") + version);
   }
+  if (Status made = MakeFlatPrograms(); !made.ok()) return made.error();
+  for (int variant = 0; variant <= kMaxTextureCandidates; ++variant) {
+    if (Status made = MakeCylinderProgram(variant); !made.ok()) return made.error();
+  }
+  glUseProgram(0);
+  MakeCylinderMesh();
+  MakeStreamedVertexArrays();
+  glBindVertexArray(0);
+
+  Resize(w, h);
+  const std::string error = GlErrorString();
+  if (!error.empty()) {
+    return MakeError("gl_unavailable", "OpenGL setup failed with " + error);
+  }
+  return {};
+}
+
+// The floor, background and overlay programs.
+Status Renderer::Impl::MakeFlatPrograms() {
   struct ProgramSource {
     GlProgram* program;
     const char* name;
@@ -113,49 +139,54 @@ Status Renderer::Impl::Initialize(int w, int h) {
     if (!program) return program.error();
     *p.program = std::move(program).value();
   }
+  return {};
+}
 
-  // Texture units of the cylinder programs' samplers: candidate i's crop on unit i, its
-  // visibility texture on unit kMaxTextureCandidates + i.
-  for (int variant = 0; variant <= kMaxTextureCandidates; ++variant) {
-    const bool visibility = variant > 0;
-    const int candidates = visibility ? variant : 1;
-    CylinderProgram& c = cylinder_programs[static_cast<size_t>(variant)];
-    Expected<GlProgram> program = MakeProgram("cylinder", shaders::CylinderVertex(kShapeRings),
-                                              shaders::CylinderFragment(candidates, visibility));
-    if (!program) return program.error();
-    c.program = std::move(program).value();
-    const GlProgram& p = c.program;
-    glUseProgram(p.id());
-    for (int i = 0; i < candidates; ++i) {
-      const std::string n = std::to_string(i);
-      glUniform1i(UniformLocation(p, ("u_texture" + n).c_str()), i);
-      glUniform1i(UniformLocation(p, ("u_visibility" + n).c_str()), kMaxTextureCandidates + i);
-    }
-    c.projection = UniformLocation(p, "u_projection");
-    c.model = UniformLocation(p, "u_viewer_from_cylinder");
-    c.normal = UniformLocation(p, "u_normal_from_cylinder");
-    c.ring_width = UniformLocation(p, "u_ring_width");
-    c.ring_depth = UniformLocation(p, "u_ring_depth");
-    c.ring_width_slope = UniformLocation(p, "u_ring_width_slope");
-    c.ring_depth_slope = UniformLocation(p, "u_ring_depth_slope");
-    c.textured = UniformLocation(p, "u_textured");
-    c.color = UniformLocation(p, "u_color");
-    c.stored = UniformLocation(p, "u_stored_from_viewer");
-    c.intrinsics = UniformLocation(p, "u_intrinsics");
-    c.size = UniformLocation(p, "u_texture_size");
-    c.relight = UniformLocation(p, "u_relight");
-    c.light = UniformLocation(p, "u_light");
-    c.stored_light = UniformLocation(p, "u_stored_light");
-    if (visibility) {
-      c.mode = UniformLocation(p, "u_mode");
-      c.ranked = UniformLocation(p, "u_ranked");
-      c.weight = UniformLocation(p, "u_weight");
-      c.label = UniformLocation(p, "u_part_label");
-      c.depth_tolerance = UniformLocation(p, "u_depth_tolerance");
-    }
+// One variant of the cylinder program, its samplers' texture units set (candidate i's crop on
+// unit i, its visibility texture on unit kMaxTextureCandidates + i) and its uniforms located;
+// leaves it in use.
+Status Renderer::Impl::MakeCylinderProgram(int variant) {
+  const bool visibility = variant > 0;
+  const int candidates = visibility ? variant : 1;
+  CylinderProgram& c = cylinder_programs[static_cast<size_t>(variant)];
+  Expected<GlProgram> program = MakeProgram("cylinder", shaders::CylinderVertex(kShapeRings),
+                                            shaders::CylinderFragment(candidates, visibility));
+  if (!program) return program.error();
+  c.program = std::move(program).value();
+  const GlProgram& p = c.program;
+  glUseProgram(p.id());
+  for (int i = 0; i < candidates; ++i) {
+    const std::string n = std::to_string(i);
+    glUniform1i(UniformLocation(p, ("u_texture" + n).c_str()), i);
+    glUniform1i(UniformLocation(p, ("u_visibility" + n).c_str()), kMaxTextureCandidates + i);
   }
-  glUseProgram(0);
+  c.projection = UniformLocation(p, "u_projection");
+  c.model = UniformLocation(p, "u_viewer_from_cylinder");
+  c.normal = UniformLocation(p, "u_normal_from_cylinder");
+  c.ring_width = UniformLocation(p, "u_ring_width");
+  c.ring_depth = UniformLocation(p, "u_ring_depth");
+  c.ring_width_slope = UniformLocation(p, "u_ring_width_slope");
+  c.ring_depth_slope = UniformLocation(p, "u_ring_depth_slope");
+  c.textured = UniformLocation(p, "u_textured");
+  c.color = UniformLocation(p, "u_color");
+  c.stored = UniformLocation(p, "u_stored_from_viewer");
+  c.intrinsics = UniformLocation(p, "u_intrinsics");
+  c.size = UniformLocation(p, "u_texture_size");
+  c.relight = UniformLocation(p, "u_relight");
+  c.light = UniformLocation(p, "u_light");
+  c.stored_light = UniformLocation(p, "u_stored_light");
+  if (visibility) {
+    c.mode = UniformLocation(p, "u_mode");
+    c.ranked = UniformLocation(p, "u_ranked");
+    c.weight = UniformLocation(p, "u_weight");
+    c.label = UniformLocation(p, "u_part_label");
+    c.depth_tolerance = UniformLocation(p, "u_depth_tolerance");
+  }
+  return {};
+}
 
+// The unit cylinder's vertices (position, normal) and indices, uploaded once.
+void Renderer::Impl::MakeCylinderMesh() {
   const CylinderMesh mesh = MakeUnitCylinderMesh(kDefaultCylinderSegments);
   std::vector<float> interleaved;
   interleaved.reserve(mesh.positions.size() * 6);
@@ -172,15 +203,19 @@ Status Renderer::Impl::Initialize(int w, int h) {
                interleaved.data(), GL_STATIC_DRAW);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, cylinder_indices.id());
   glBufferData(GL_ELEMENT_ARRAY_BUFFER,
-               static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(uint32_t)),
-               mesh.indices.data(), GL_STATIC_DRAW);
+               static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(uint32_t)), mesh.indices.data(),
+               GL_STATIC_DRAW);
   glEnableVertexAttribArray(0);
   glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
   glEnableVertexAttribArray(1);
   glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
                         reinterpret_cast<const void*>(3 * sizeof(float)));
   cylinder_index_count = static_cast<GLsizei>(mesh.indices.size());
+}
 
+// The vertex arrays of the floor (position, grid coordinates) and the overlay (position),
+// whose vertices are streamed per frame, and the background's (none: a full-screen triangle).
+void Renderer::Impl::MakeStreamedVertexArrays() {
   floor_vao = MakeVertexArray();
   floor_vertices = MakeBuffer();
   glBindVertexArray(floor_vao.id());
@@ -199,14 +234,6 @@ Status Renderer::Impl::Initialize(int w, int h) {
   glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
 
   background_vao = MakeVertexArray();
-  glBindVertexArray(0);
-
-  Resize(w, h);
-  const std::string error = GlErrorString();
-  if (!error.empty()) {
-    return MakeError("gl_unavailable", "OpenGL setup failed with " + error);
-  }
-  return {};
 }
 
 void Renderer::Impl::Resize(int w, int h) {
@@ -230,14 +257,13 @@ void Renderer::Impl::Resize(int w, int h) {
 }
 
 void Renderer::Impl::DrawBackground(const ImageRgb8& image) {
-  if (!background_texture || background_width != image.width ||
-      background_height != image.height) {
+  if (!background_texture || background_width != image.width || background_height != image.height) {
     background_texture = MakeTexture();
     glBindTexture(GL_TEXTURE_2D, background_texture.id());
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, image.width, image.height, 0, GL_RGB,
-                 GL_UNSIGNED_BYTE, nullptr);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, image.width, image.height, 0, GL_RGB, GL_UNSIGNED_BYTE,
+                 nullptr);
     background_width = image.width;
     background_height = image.height;
   }
@@ -272,9 +298,9 @@ void Renderer::Impl::DrawFloor(const FloorGrid& floor, const std::array<float, 1
            {{-e, -e}, {e, -e}, {e, e}, {-e, -e}, {e, e}, {-e, e}}}) {
     const Eigen::Vector3d world = floor.point_on_floor_in_world + s * e1 + t * e2;
     const Eigen::Vector3d viewer = floor.viewer_from_world * world;
-    vertices.insert(vertices.end(), {static_cast<float>(viewer.x()), static_cast<float>(viewer.y()),
-                                     static_cast<float>(viewer.z()), static_cast<float>(s),
-                                     static_cast<float>(t)});
+    vertices.insert(vertices.end(),
+                    {static_cast<float>(viewer.x()), static_cast<float>(viewer.y()),
+                     static_cast<float>(viewer.z()), static_cast<float>(s), static_cast<float>(t)});
   }
   glBindVertexArray(floor_vao.id());
   glBindBuffer(GL_ARRAY_BUFFER, floor_vertices.id());
@@ -292,15 +318,7 @@ void Renderer::Impl::DrawFloor(const FloorGrid& floor, const std::array<float, 1
 
 void Renderer::Impl::DrawCylinders(const FrameDraw& frame,
                                    const std::array<float, 16>& projection) {
-  for (const CylinderProgram& c : cylinder_programs) {
-    glUseProgram(c.program.id());
-    glUniformMatrix4fv(c.projection, 1, GL_FALSE, projection.data());
-    if (c.depth_tolerance >= 0)
-      glUniform1f(c.depth_tolerance, static_cast<float>(frame.depth_tolerance_m));
-    const Eigen::Vector3f light = frame.subject_light.cast<float>();
-    glUniform1i(c.relight, light.isZero(0) ? 0 : 1);
-    glUniform3f(c.light, light.x(), light.y(), light.z());
-  }
+  SetFrameUniforms(frame, projection);
   glEnable(GL_DEPTH_TEST);
   glDepthMask(GL_TRUE);
   glBindVertexArray(cylinder_vao.id());
@@ -315,66 +333,90 @@ void Renderer::Impl::DrawCylinders(const FrameDraw& frame,
       glUseProgram(program.program.id());
       current = &program;
     }
-    const Eigen::Matrix4d viewer_from_cylinder =
-        ViewerFromUnitCylinder(c.a, c.b, c.radius, c.width_direction);
-    const std::array<float, 16> model = ToFloat(viewer_from_cylinder);
-    glUniformMatrix4fv(program.model, 1, GL_FALSE, model.data());
-    const Eigen::Matrix3f normal = NormalFromUnitCylinder(viewer_from_cylinder).cast<float>();
-    glUniformMatrix3fv(program.normal, 1, GL_FALSE, normal.data());
-    std::array<float, kShapeRings> width{}, depth{}, width_slope{}, depth_slope{};
-    for (int k = 0; k < kShapeRings; ++k) {
-      width[k] = static_cast<float>(c.shape.width[k]);
-      depth[k] = static_cast<float>(c.shape.depth[k]);
-      width_slope[k] = static_cast<float>(RingSlope(c.shape.width, k));
-      depth_slope[k] = static_cast<float>(RingSlope(c.shape.depth, k));
-    }
-    glUniform1fv(program.ring_width, kShapeRings, width.data());
-    glUniform1fv(program.ring_depth, kShapeRings, depth.data());
-    glUniform1fv(program.ring_width_slope, kShapeRings, width_slope.data());
-    glUniform1fv(program.ring_depth_slope, kShapeRings, depth_slope.data());
-    glUniform3f(program.color, c.color.x(), c.color.y(), c.color.z());
+    SetShapeUniforms(program, c);
     glUniform1i(program.textured, textured ? 1 : 0);
-    if (textured) {
-      std::array<float, 16 * kMaxTextureCandidates> stored{};
-      std::array<float, 4 * kMaxTextureCandidates> intrinsics{};
-      std::array<float, 2 * kMaxTextureCandidates> size{};
-      std::array<float, kMaxTextureCandidates> weight{};
-      std::array<float, 3 * kMaxTextureCandidates> stored_light{};
-      for (int i = 0; i < count; ++i) {
-        const TextureCandidate& candidate = c.candidates[static_cast<size_t>(i)];
-        const UploadedTexture& t = textures[static_cast<size_t>(candidate.texture)];
-        const std::array<float, 16> m = ToFloat(candidate.stored_from_viewer);
-        std::copy(m.begin(), m.end(), stored.begin() + 16 * i);
-        const float k[4] = {static_cast<float>(t.camera.fx), static_cast<float>(t.camera.fy),
-                            static_cast<float>(t.camera.cx), static_cast<float>(t.camera.cy)};
-        std::copy(k, k + 4, intrinsics.begin() + 4 * i);
-        size[2 * i] = static_cast<float>(t.width);
-        size[2 * i + 1] = static_cast<float>(t.height);
-        weight[i] = static_cast<float>(candidate.weight);
-        for (int k = 0; k < 3; ++k)
-          stored_light[3 * i + k] = static_cast<float>(candidate.stored_light[k]);
-        glActiveTexture(GL_TEXTURE0 + i);
-        glBindTexture(GL_TEXTURE_2D, t.texture.id());
-        glActiveTexture(GL_TEXTURE0 + kMaxTextureCandidates + i);
-        glBindTexture(GL_TEXTURE_2D, t.visibility.id());
-      }
-      glUniformMatrix4fv(program.stored, count, GL_FALSE, stored.data());
-      glUniform4fv(program.intrinsics, count, intrinsics.data());
-      glUniform2fv(program.size, count, size.data());
-      glUniform3fv(program.stored_light, count, stored_light.data());
-      if (visibility) {
-        glUniform1i(program.mode, static_cast<int>(c.texturing));
-        glUniform1i(program.ranked, static_cast<int>(std::count_if(
-                                        c.candidates.begin(), c.candidates.end(),
-                                        [](const TextureCandidate& t) { return !t.fallback; })));
-
-        glUniform1f(program.label, static_cast<float>(PartLabel(c.part)));
-        glUniform1fv(program.weight, count, weight.data());
-      }
-    }
+    if (textured) BindCandidates(program, c, count, visibility);
     glDrawElements(GL_TRIANGLES, cylinder_index_count, GL_UNSIGNED_INT, nullptr);
   }
   glActiveTexture(GL_TEXTURE0);
+}
+
+// The uniforms every cylinder of a frame shares, in every variant of the program.
+void Renderer::Impl::SetFrameUniforms(const FrameDraw& frame,
+                                      const std::array<float, 16>& projection) {
+  for (const CylinderProgram& c : cylinder_programs) {
+    glUseProgram(c.program.id());
+    glUniformMatrix4fv(c.projection, 1, GL_FALSE, projection.data());
+    if (c.depth_tolerance >= 0)
+      glUniform1f(c.depth_tolerance, static_cast<float>(frame.depth_tolerance_m));
+    const Eigen::Vector3f light = frame.subject_light.cast<float>();
+    glUniform1i(c.relight, light.isZero(0) ? 0 : 1);
+    glUniform3f(c.light, light.x(), light.y(), light.z());
+  }
+}
+
+// A cylinder's placement, ring shape and flat colour.
+void Renderer::Impl::SetShapeUniforms(const CylinderProgram& program, const CylinderDraw& c) {
+  const Eigen::Matrix4d viewer_from_cylinder =
+      ViewerFromUnitCylinder(c.a, c.b, c.radius, c.width_direction);
+  const std::array<float, 16> model = ToFloat(viewer_from_cylinder);
+  glUniformMatrix4fv(program.model, 1, GL_FALSE, model.data());
+  const Eigen::Matrix3f normal = NormalFromUnitCylinder(viewer_from_cylinder).cast<float>();
+  glUniformMatrix3fv(program.normal, 1, GL_FALSE, normal.data());
+  std::array<float, kShapeRings> width{}, depth{}, width_slope{}, depth_slope{};
+  for (int k = 0; k < kShapeRings; ++k) {
+    width[k] = static_cast<float>(c.shape.width[k]);
+    depth[k] = static_cast<float>(c.shape.depth[k]);
+    width_slope[k] = static_cast<float>(RingSlope(c.shape.width, k));
+    depth_slope[k] = static_cast<float>(RingSlope(c.shape.depth, k));
+  }
+  glUniform1fv(program.ring_width, kShapeRings, width.data());
+  glUniform1fv(program.ring_depth, kShapeRings, depth.data());
+  glUniform1fv(program.ring_width_slope, kShapeRings, width_slope.data());
+  glUniform1fv(program.ring_depth_slope, kShapeRings, depth_slope.data());
+  glUniform3f(program.color, c.color.x(), c.color.y(), c.color.z());
+}
+
+// A textured cylinder's first `count` candidates: their textures bound and their mappings,
+// intrinsics, sizes and lights set, with the mode, ranking and weights of the visible modes.
+void Renderer::Impl::BindCandidates(const CylinderProgram& program, const CylinderDraw& c,
+                                    int count, bool visibility) {
+  std::array<float, 16 * kMaxTextureCandidates> stored{};
+  std::array<float, 4 * kMaxTextureCandidates> intrinsics{};
+  std::array<float, 2 * kMaxTextureCandidates> size{};
+  std::array<float, kMaxTextureCandidates> weight{};
+  std::array<float, 3 * kMaxTextureCandidates> stored_light{};
+  for (int i = 0; i < count; ++i) {
+    const TextureCandidate& candidate = c.candidates[static_cast<size_t>(i)];
+    const UploadedTexture& t = textures[static_cast<size_t>(candidate.texture)];
+    const std::array<float, 16> m = ToFloat(candidate.stored_from_viewer);
+    std::copy(m.begin(), m.end(), stored.begin() + 16 * i);
+    const float k[4] = {static_cast<float>(t.camera.fx), static_cast<float>(t.camera.fy),
+                        static_cast<float>(t.camera.cx), static_cast<float>(t.camera.cy)};
+    std::copy(k, k + 4, intrinsics.begin() + 4 * i);
+    size[2 * i] = static_cast<float>(t.width);
+    size[2 * i + 1] = static_cast<float>(t.height);
+    weight[i] = static_cast<float>(candidate.weight);
+    for (int k = 0; k < 3; ++k)
+      stored_light[3 * i + k] = static_cast<float>(candidate.stored_light[k]);
+    glActiveTexture(GL_TEXTURE0 + i);
+    glBindTexture(GL_TEXTURE_2D, t.texture.id());
+    glActiveTexture(GL_TEXTURE0 + kMaxTextureCandidates + i);
+    glBindTexture(GL_TEXTURE_2D, t.visibility.id());
+  }
+  glUniformMatrix4fv(program.stored, count, GL_FALSE, stored.data());
+  glUniform4fv(program.intrinsics, count, intrinsics.data());
+  glUniform2fv(program.size, count, size.data());
+  glUniform3fv(program.stored_light, count, stored_light.data());
+  if (visibility) {
+    glUniform1i(program.mode, static_cast<int>(c.texturing));
+    glUniform1i(program.ranked, static_cast<int>(std::count_if(
+                                    c.candidates.begin(), c.candidates.end(),
+                                    [](const TextureCandidate& t) { return !t.fallback; })));
+
+    glUniform1f(program.label, static_cast<float>(PartLabel(c.part)));
+    glUniform1fv(program.weight, count, weight.data());
+  }
 }
 
 void Renderer::Impl::DrawBones(const FrameDraw& frame, const std::array<float, 16>& projection) {
@@ -436,8 +478,8 @@ int Renderer::UploadTexture(const StoredTexture& texture) {
   REENACT_CHECK(texture.camera.width == color.width && texture.camera.height == color.height,
                 "texture camera must have the crop's size");
   const auto empty_or_crop_sized = [&color](const auto& image) {
-    return image.empty() || (image.channels == 1 && image.width == color.width &&
-                             image.height == color.height);
+    return image.empty() ||
+           (image.channels == 1 && image.width == color.width && image.height == color.height);
   };
   REENACT_CHECK(empty_or_crop_sized(texture.part_labels),
                 "texture part labels must be empty or single-channel of the crop's size");
@@ -457,16 +499,15 @@ int Renderer::UploadTexture(const StoredTexture& texture) {
     for (int c = 0; c < 3; ++c) rgba[4 * i + c] = subject ? color.data[3 * i + c] : 0;
     rgba[4 * i + 3] = subject ? 255 : 0;
   }
-  UploadedTexture uploaded{MakeTexture(), MakeTexture(), color.width, color.height,
-                           texture.camera};
+  UploadedTexture uploaded{MakeTexture(), MakeTexture(), color.width, color.height, texture.camera};
   glBindTexture(GL_TEXTURE_2D, uploaded.texture.id());
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, color.width, color.height, 0, GL_RGBA,
-               GL_UNSIGNED_BYTE, rgba.data());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, color.width, color.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               rgba.data());
   std::vector<float> data(static_cast<size_t>(color.width) * color.height * 4, 0.0f);
   for (size_t i = 0, n = static_cast<size_t>(color.width) * color.height; i < n; ++i) {
     data[4 * i] = texture.part_labels.empty() ? -1.0f : texture.part_labels.data[i];
@@ -524,9 +565,9 @@ void Renderer::Draw(const FrameDraw& frame) {
                     "cylinder shape rings must be finite and > 0");
     REENACT_CHECK(!c.width_direction || c.width_direction->allFinite(),
                   "cylinder width direction must be finite");
-    REENACT_CHECK(c.candidates.size() <= static_cast<size_t>(kMaxTextureCandidates),
-                  "a cylinder has at most " + std::to_string(kMaxTextureCandidates) +
-                      " texture candidates");
+    REENACT_CHECK(
+        c.candidates.size() <= static_cast<size_t>(kMaxTextureCandidates),
+        "a cylinder has at most " + std::to_string(kMaxTextureCandidates) + " texture candidates");
     for (size_t i = 0; i < c.candidates.size(); ++i) {
       const TextureCandidate& t = c.candidates[i];
       REENACT_CHECK(t.fallback || i == 0 || !c.candidates[i - 1].fallback,
@@ -547,9 +588,9 @@ void Renderer::Draw(const FrameDraw& frame) {
   }
   if (frame.background != nullptr) {
     const ImageRgb8& bg = *frame.background;
-    REENACT_CHECK(bg.channels == 3 && bg.width == frame.camera.width &&
-                      bg.height == frame.camera.height,
-                  "background must be an RGB image of the camera's size");
+    REENACT_CHECK(
+        bg.channels == 3 && bg.width == frame.camera.width && bg.height == frame.camera.height,
+        "background must be an RGB image of the camera's size");
   }
   impl_->MakeCurrent();
   impl_->Resize(frame.camera.width, frame.camera.height);
@@ -615,8 +656,8 @@ void Renderer::BlitToDefaultFramebuffer(int framebuffer_width, int framebuffer_h
   const int h = static_cast<int>(std::lround(impl_->height * scale));
   const int x0 = (framebuffer_width - w) / 2, y0 = (framebuffer_height - h) / 2;
   glBindFramebuffer(GL_READ_FRAMEBUFFER, impl_->framebuffer.id());
-  glBlitFramebuffer(0, 0, impl_->width, impl_->height, x0, y0, x0 + w, y0 + h,
-                    GL_COLOR_BUFFER_BIT, GL_LINEAR);
+  glBlitFramebuffer(0, 0, impl_->width, impl_->height, x0, y0, x0 + w, y0 + h, GL_COLOR_BUFFER_BIT,
+                    GL_LINEAR);
   glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
   // The offscreen alpha holds the subject mask; a window must be opaque on compositing
   // desktops, so its alpha is set to 1 everywhere.

@@ -144,21 +144,10 @@ double ReliableDepth(const ImageDepthMm& depth, double depth_scale_m, int x, int
   return centre;
 }
 
-}  // namespace
-
-FrameFeatures ExtractOrbFeatures(const cv::Mat& gray, const ImageDepthMm& depth,
-                                 double depth_scale_m, const ImageGray8* person_mask,
-                                 const PinholeCamera& camera, const OrbFeatureOptions& options,
-                                 OrbTimings* timings) {
-  const double t_start = timings != nullptr ? CpuMs() : 0;
-  double t_subpixel = 0;
-  options.Check();
-  REENACT_CHECK(gray.type() == CV_8UC1 && gray.cols == camera.width && gray.rows == camera.height,
-                "gray image must be CV_8UC1 of the camera's size");
-  REENACT_CHECK(depth.width == camera.width && depth.height == camera.height && depth.channels == 1,
-                "depth must be registered to the camera (same size, one channel)");
-  REENACT_CHECK(std::isfinite(depth_scale_m) && depth_scale_m > 0, "depth_scale_m must be > 0");
-
+// Where ORB may detect: everywhere but the person mask grown by mask_dilation_px; empty (all
+// of the image) without a mask.
+cv::Mat AllowedMask(const ImageGray8* person_mask, const PinholeCamera& camera,
+                    const OrbFeatureOptions& options) {
   cv::Mat allowed;
   if (person_mask != nullptr && !person_mask->empty()) {
     REENACT_CHECK(person_mask->width == camera.width && person_mask->height == camera.height &&
@@ -174,6 +163,61 @@ FrameFeatures ExtractOrbFeatures(const cv::Mat& gray, const ImageDepthMm& depth,
     allowed = cv::Mat(camera.height, camera.width, CV_8UC1, cv::Scalar(255));
     allowed.setTo(0, grown);
   }
+  return allowed;
+}
+
+// The kept candidates at their pixel centres (OpenCV scales a level's pixel coordinates by
+// s = scale^octave; the level's pixel centre x_l lies at (x_l + 1/2) s - 1/2 in the full
+// image, pixel centres at integers).
+std::vector<cv::KeyPoint> CentredKeypoints(const std::vector<cv::KeyPoint>& candidates,
+                                           const std::vector<int>& kept, double scale_factor) {
+  std::vector<cv::KeyPoint> keypoints(kept.size());
+  for (size_t k = 0; k < kept.size(); ++k) {
+    keypoints[k] = candidates[kept[k]];
+    const float half = 0.5f * (std::pow(static_cast<float>(scale_factor), keypoints[k].octave) - 1);
+    keypoints[k].pt.x += half;
+    keypoints[k].pt.y += half;
+  }
+  return keypoints;
+}
+
+// A keypoint's normalised ray, octave and reliable depth (refined by a local plane fit when
+// asked; 0 without).
+KeypointObservation ObserveKeypoint(const cv::KeyPoint& kp, const ImageDepthMm& depth,
+                                    double depth_scale_m, const PinholeCamera& camera,
+                                    const OrbFeatureOptions& options) {
+  KeypointObservation obs;
+  obs.normalized = camera.Undistort({kp.pt.x, kp.pt.y});
+  obs.octave = kp.octave;
+  const int x = static_cast<int>(std::lround(kp.pt.x)), y = static_cast<int>(std::lround(kp.pt.y));
+  obs.depth_m = ReliableDepth(depth, depth_scale_m, x, y, options);
+  if (obs.depth_m > 0 && options.depth_fit_radius_px > 0) {
+    const auto fitted = FitDepthPlane(
+        depth, depth_scale_m, kp.pt.x, kp.pt.y,
+        {.radius_px = options.depth_fit_radius_px, .rel_tolerance = options.depth_edge_ratio});
+    if (fitted && *fitted >= options.min_depth_m && *fitted <= options.max_depth_m) {
+      obs.depth_m = *fitted;
+    }
+  }
+  return obs;
+}
+
+}  // namespace
+
+FrameFeatures ExtractOrbFeatures(const cv::Mat& gray, const ImageDepthMm& depth,
+                                 double depth_scale_m, const ImageGray8* person_mask,
+                                 const PinholeCamera& camera, const OrbFeatureOptions& options,
+                                 OrbTimings* timings) {
+  const double t_start = timings != nullptr ? CpuMs() : 0;
+  double t_subpixel = 0;
+  options.Check();
+  REENACT_CHECK(gray.type() == CV_8UC1 && gray.cols == camera.width && gray.rows == camera.height,
+                "gray image must be CV_8UC1 of the camera's size");
+  REENACT_CHECK(depth.width == camera.width && depth.height == camera.height && depth.channels == 1,
+                "depth must be registered to the camera (same size, one channel)");
+  REENACT_CHECK(std::isfinite(depth_scale_m) && depth_scale_m > 0, "depth_scale_m must be > 0");
+
+  const cv::Mat allowed = AllowedMask(person_mask, camera, options);
 
   const int candidates_wanted =
       std::max(options.num_features,
@@ -201,17 +245,8 @@ FrameFeatures ExtractOrbFeatures(const cv::Mat& gray, const ImageDepthMm& depth,
   out.observations.reserve(kept.size());
   out.points_in_camera.reserve(kept.size());
   out.descriptors = cv::Mat(static_cast<int>(kept.size()), 32, CV_8UC1);
-  // Keypoints at their pixel centres (OpenCV scales a level's pixel coordinates by
-  // s = scale^octave; the level's pixel centre x_l lies at (x_l + 1/2) s - 1/2 in the full
-  // image, pixel centres at integers), then refined.
-  std::vector<cv::KeyPoint> keypoints(kept.size());
-  for (size_t k = 0; k < kept.size(); ++k) {
-    keypoints[k] = candidates[kept[k]];
-    const float half =
-        0.5f * (std::pow(static_cast<float>(options.scale_factor), keypoints[k].octave) - 1);
-    keypoints[k].pt.x += half;
-    keypoints[k].pt.y += half;
-  }
+  // Keypoints at their pixel centres, then refined.
+  std::vector<cv::KeyPoint> keypoints = CentredKeypoints(candidates, kept, options.scale_factor);
   if (options.subpixel) {
     const double t = timings != nullptr ? CpuMs() : 0;
     const SubpixelCornerRefiner refiner;
@@ -224,20 +259,7 @@ FrameFeatures ExtractOrbFeatures(const cv::Mat& gray, const ImageDepthMm& depth,
     const cv::KeyPoint& kp = keypoints[k];
     std::memcpy(out.descriptors.ptr<uint8_t>(static_cast<int>(k)),
                 candidate_descriptors.ptr<uint8_t>(kept[k]), 32);
-    KeypointObservation obs;
-    obs.normalized = camera.Undistort({kp.pt.x, kp.pt.y});
-    obs.octave = kp.octave;
-    const int x = static_cast<int>(std::lround(kp.pt.x)),
-              y = static_cast<int>(std::lround(kp.pt.y));
-    obs.depth_m = ReliableDepth(depth, depth_scale_m, x, y, options);
-    if (obs.depth_m > 0 && options.depth_fit_radius_px > 0) {
-      const auto fitted = FitDepthPlane(
-          depth, depth_scale_m, kp.pt.x, kp.pt.y,
-          {.radius_px = options.depth_fit_radius_px, .rel_tolerance = options.depth_edge_ratio});
-      if (fitted && *fitted >= options.min_depth_m && *fitted <= options.max_depth_m) {
-        obs.depth_m = *fitted;
-      }
-    }
+    const KeypointObservation obs = ObserveKeypoint(kp, depth, depth_scale_m, camera, options);
     out.keypoints.push_back(kp);
     out.observations.push_back(obs);
     out.points_in_camera.push_back(
