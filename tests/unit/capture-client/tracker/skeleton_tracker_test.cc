@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "capture-client/slam/rgbd_slam.h"
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "common/error/check.h"
+#include "synthetic/synthetic_scene.h"
 #include "tests/unit/capture-client/tracker/tracker_test_scenes.h"
 
 namespace reenact::capture {
