@@ -5,7 +5,7 @@
 #include <system_error>
 #include <vector>
 
-#include "capture-client/source/text_file.h"
+#include "common/io/text_file.h"
 #include "common/skeleton/joint_maps.h"
 
 namespace reenact::capture {

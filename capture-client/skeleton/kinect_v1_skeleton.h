@@ -53,7 +53,7 @@
 //   l_shoulder = ShoulderLeft, l_elbow = ElbowLeft, l_hand = HandLeft (else WristLeft),
 //   l_hip = HipLeft, l_knee = KneeLeft, l_foot = AnkleLeft (else FootLeft); right alike.
 // Why: our forearm cylinder spans elbow -> hand and our synthetic subject puts the hand joint
-// at the palm centre (capture-client/synthetic/body_model.h), which is where Kinect's
+// at the palm centre (synthetic/body_model.h), which is where Kinect's
 // HandLeft sits, so the cylinder covers the hand as the thesis's NiTE hand did; WristLeft is
 // the fallback when the hand is untracked. Our shin spans knee -> foot and the synthetic foot
 // joint is the ankle centre (NiTE's foot is at the ankle too), so AnkleLeft; FootLeft (on the

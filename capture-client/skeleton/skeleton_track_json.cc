@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "capture-client/source/text_file.h"
+#include "common/io/text_file.h"
 
 namespace reenact::capture {
 namespace {

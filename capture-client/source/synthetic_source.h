@@ -6,7 +6,7 @@
 #include <string_view>
 
 #include "capture-client/source/frame_source.h"
-#include "capture-client/synthetic/synthetic_scene.h"
+#include "synthetic/synthetic_scene.h"
 
 namespace reenact::capture {
 

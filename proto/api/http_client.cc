@@ -1,14 +1,10 @@
 #include "proto/api/http_client.h"
 
-#include <algorithm>
-#include <cctype>
-
 #include <boost/asio/connect.hpp>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
-
 #include <cctype>
 #include <charconv>
 
@@ -39,7 +35,8 @@ class Exchange {
     request_.set(http::field::user_agent, "reenact-client/0.1");
     request_.set(http::field::connection, "close");
     for (const auto& [name, value] : request.headers) request_.set(name, value);
-    if (!request.content_type.empty()) request_.set(http::field::content_type, request.content_type);
+    if (!request.content_type.empty())
+      request_.set(http::field::content_type, request.content_type);
     request_.body() = request.body;
     request_.prepare_payload();
     parser_.body_limit(options.max_response_body_bytes);
@@ -68,15 +65,16 @@ class Exchange {
 
   void Fail(beast::error_code ec, std::string_view step) {
     if (ec == asio::error::connection_refused) {
-      return Finish(MakeError("unreachable", "cannot reach server at " + url_.text +
-                                                 ": connection refused; is reenact-server running?"));
+      return Finish(
+          MakeError("unreachable", "cannot reach server at " + url_.text +
+                                       ": connection refused; is reenact-server running?"));
     }
     if (ec == beast::error::timeout || ec == asio::error::operation_aborted) {
-      return Finish(MakeError("timeout", "server at " + url_.text + " did not answer within " +
-                                             std::to_string(step == "connect"
-                                                                ? options_.connect_timeout.count()
-                                                                : options_.read_timeout.count()) +
-                                             " ms (" + std::string(step) + ")"));
+      return Finish(MakeError(
+          "timeout", "server at " + url_.text + " did not answer within " +
+                         std::to_string(step == "connect" ? options_.connect_timeout.count()
+                                                          : options_.read_timeout.count()) +
+                         " ms (" + std::string(step) + ")"));
     }
     if (ec == http::error::body_limit) {
       return Finish(MakeError("too_large", "response from " + url_.text + " exceeds " +
@@ -87,8 +85,8 @@ class Exchange {
       return Finish(MakeError("unreachable", "cannot reach server at " + url_.text + ": " +
                                                  ec.message() + "; is reenact-server running?"));
     }
-    Finish(MakeError("network", "talking to " + url_.text + " failed during " +
-                                    std::string(step) + ": " + ec.message()));
+    Finish(MakeError("network", "talking to " + url_.text + " failed during " + std::string(step) +
+                                    ": " + ec.message()));
   }
 
   void OnResolve(beast::error_code ec, tcp::resolver::results_type results) {
@@ -138,12 +136,6 @@ void HttpClientOptions::Check() const {
   REENACT_CHECK(connect_timeout.count() > 0, "connect_timeout must be > 0");
   REENACT_CHECK(read_timeout.count() > 0, "read_timeout must be > 0");
   REENACT_CHECK(max_response_body_bytes > 0, "max_response_body_bytes must be > 0");
-}
-
-bool EqualsIgnoreCase(std::string_view a, std::string_view b) {
-  return std::ranges::equal(a, b, [](unsigned char x, unsigned char y) {
-    return std::tolower(x) == std::tolower(y);
-  });
 }
 
 Expected<BaseUrl> ParseBaseUrl(std::string_view url) {
@@ -198,14 +190,12 @@ Expected<BaseUrl> ParseBaseUrl(std::string_view url) {
 }
 
 std::optional<std::string> HttpResponse::Header(std::string_view name) const {
-  for (const auto& [key, value] : headers) {
-    if (EqualsIgnoreCase(key, name)) return value;
-  }
-  return std::nullopt;
+  return FindHeader(headers, name);
 }
 
 HttpClient::HttpClient(std::string base_url, HttpClientOptions options)
-    : base_url_text_(std::move(base_url)), base_url_(ParseBaseUrl(base_url_text_)),
+    : base_url_text_(std::move(base_url)),
+      base_url_(ParseBaseUrl(base_url_text_)),
       options_(options) {
   options_.Check();
   if (base_url_) base_url_text_ = base_url_->text;

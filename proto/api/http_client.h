@@ -10,10 +10,9 @@
 #include <optional>
 #include <string>
 #include <string_view>
-#include <utility>
-#include <vector>
 
 #include "common/error/expected.h"
+#include "proto/api/http_headers.h"
 
 namespace reenact::proto {
 
@@ -36,12 +35,7 @@ struct BaseUrl {
   std::string text;  // normalised "http://host:port"
 };
 // code "invalid_argument" with a message showing the expected form.
-// ASCII case-insensitive equality (HTTP header names, URL schemes).
-bool EqualsIgnoreCase(std::string_view a, std::string_view b);
-
 Expected<BaseUrl> ParseBaseUrl(std::string_view url);
-
-using HttpHeaders = std::vector<std::pair<std::string, std::string>>;
 
 struct HttpRequest {
   std::string method = "GET";  // GET, POST, PUT, DELETE, ...

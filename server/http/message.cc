@@ -1,17 +1,11 @@
 #include "server/http/message.h"
 
-#include <cctype>
-
 #include "proto/api/api_types.h"
-#include "proto/api/http_client.h"
 
 namespace reenact::server {
 
 std::optional<std::string> Request::Header(std::string_view name) const {
-  for (const auto& [key, value] : headers) {
-    if (EqualsIgnoreCase(key, name)) return value;
-  }
-  return std::nullopt;
+  return proto::FindHeader(headers, name);
 }
 
 Response ErrorResponse(int status, std::string_view code, std::string_view message) {

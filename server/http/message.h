@@ -2,21 +2,20 @@
 // Transport-free HTTP messages: what the route handlers consume and produce, so that routes
 // are pure functions testable without sockets (server/http/routes.h).
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
-#include "proto/api/http_client.h"
+#include "proto/api/http_headers.h"
 
 namespace reenact::server {
 
 using proto::EqualsIgnoreCase;
 
-using HeaderList = std::vector<std::pair<std::string, std::string>>;
+using HeaderList = proto::HttpHeaders;
 
 struct Request {
   std::string method;  // "GET", "POST", ...
@@ -39,7 +38,5 @@ struct Response {
 Response ErrorResponse(int status, std::string_view code, std::string_view message);
 // A JSON body (invalid UTF-8 in strings is replaced, never thrown on).
 Response JsonResponse(int status, const nlohmann::json& body);
-
-
 
 }  // namespace reenact::server

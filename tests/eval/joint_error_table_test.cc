@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "capture-client/synthetic/body_model.h"
+#include "synthetic/body_model.h"
 #include "tests/eval/tracker_eval.h"
 
 namespace reenact::eval {

@@ -15,11 +15,11 @@
 
 #include "capture-client/record/clip_recorder.h"
 #include "capture-client/source/synthetic_source.h"
-#include "capture-client/synthetic/room.h"
 #include "capture-client/tracker/tracker_skeleton_source.h"
 #include "common/error/check.h"
 #include "common/estimate/median.h"
 #include "proto/clip/clip_directory.h"
+#include "synthetic/room.h"
 #include "tests/eval/clip_scene_frames.h"
 #include "tests/eval/side_by_side.h"
 #include "viewer-client/output/png_writer.h"
@@ -313,10 +313,10 @@ Expected<QualityRun> RunQuality(const QualityOptions& options) {
         if (!e.ok()) return e.error();
         ms.push_back(e->ms);
         if (previous) {
-          const FlickerMeasure f = MeasureFlicker(
-              previous->rendered.color, previous->rendered.subject_mask, e->rendered.color,
-              e->rendered.subject_mask, previous->truth.color, previous->truth.mask,
-              e->truth.color, e->truth.mask);
+          const FlickerMeasure f =
+              MeasureFlicker(previous->rendered.color, previous->rendered.subject_mask,
+                             e->rendered.color, e->rendered.subject_mask, previous->truth.color,
+                             previous->truth.mask, e->truth.color, e->truth.mask);
           row.reenacted_change += f.reenacted_change;
           row.truth_change += f.truth_change;
           row.error_change += f.error_change;

@@ -21,9 +21,9 @@
 #include <string>
 #include <vector>
 
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "common/error/expected.h"
 #include "common/render/reference_renderer.h"
+#include "synthetic/synthetic_scene.h"
 #include "tests/eval/image_metrics.h"
 #include "tests/eval/part_provenance.h"
 #include "tests/eval/quality_methods.h"

@@ -11,9 +11,9 @@
 
 #include "capture-client/record/clip_recorder.h"
 #include "capture-client/source/synthetic_source.h"
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "common/error/check.h"
 #include "proto/clip/clip_directory.h"
+#include "synthetic/synthetic_scene.h"
 #include "tests/eval/quality_cli.h"
 #include "viewer-client/camera/synthetic_camera_source.h"
 

@@ -14,7 +14,7 @@
 //    the subject's centre (the skeleton's waist at frame 0) by
 //        a_k = D sin(2 pi k / (N - 1))      (0 -> +D -> 0 -> -D -> 0 degrees; D default 45)
 //    at the sensor's distance and height, aimed at the centre, with walk-handheld's bob and
-//    hand shake (capture-client/synthetic/handheld_trajectory.h), the path of the viewer's
+//    hand shake (synthetic/handheld_trajectory.h), the path of the viewer's
 //    synthetic camera (viewer-client/camera/synthetic_camera_source.h). Viewer frame k shows the
 //    scene at frame k mod frame_count (the subject keeps moving), rendered with the sensor's
 //    intrinsics; its true viewer_from_world is known by construction.

@@ -9,8 +9,8 @@
 
 #include "capture-client/segment/mask_overlap.h"
 #include "capture-client/segment/person_segmenter.h"
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "common/estimate/median.h"
+#include "synthetic/synthetic_scene.h"
 #include "tests/eval/quality_cli.h"
 
 namespace reenact::eval {

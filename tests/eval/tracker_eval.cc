@@ -12,8 +12,8 @@
 #include <string_view>
 
 #include "capture-client/slam/rgbd_slam.h"
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "common/estimate/median.h"
+#include "synthetic/synthetic_scene.h"
 #include "tests/eval/body_heading.h"
 #include "tests/eval/calibration_aligned_error.h"
 #include "tests/eval/quality_cli.h"

@@ -6,8 +6,8 @@
 
 #include <algorithm>
 
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "common/error/check.h"
+#include "synthetic/synthetic_scene.h"
 
 namespace reenact::eval {
 namespace {

@@ -1,15 +1,15 @@
 // The three programs as separate processes over loopback HTTP: server, capture + publish,
 // browse + play headless; the rendered subject is checked against the synthetic scene's
 // ground truth seen from the very same novel viewpoint.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <fstream>
-#include <regex>
-
-#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <regex>
 
-#include "capture-client/synthetic/synthetic_scene.h"
+#include "synthetic/synthetic_scene.h"
 #include "tests/integration/process.h"
 
 namespace reenact {
@@ -39,14 +39,15 @@ Eigen::Isometry3d PoseFromJson(const nlohmann::json& j) {
 TEST(EndToEnd, PublishBrowseAndPlayMatchesGroundTruthAtNovelViewpoint) {
   TempDir tmp;
   BackgroundProcess server;
-  const auto ready = server.Start({kServer, "serve", "--db", tmp.path() + "/reenact.db",
-                                   "--listen", "127.0.0.1:0"},
-                                  "listening on ", std::chrono::seconds(20));
+  const auto ready = server.Start(
+      {kServer, "serve", "--db", tmp.path() + "/reenact.db", "--listen", "127.0.0.1:0"},
+      "listening on ", std::chrono::seconds(20));
   ASSERT_TRUE(ready) << "server did not start: " << server.stderr_text();
   const std::string url = Field(*ready, R"((http://127\.0\.0\.1:\d+))");
   ASSERT_FALSE(url.empty()) << *ready;
 
-  const auto user = RunProcess({kServer, "user", "add", "alice", "--db", tmp.path() + "/reenact.db"});
+  const auto user =
+      RunProcess({kServer, "user", "add", "alice", "--db", tmp.path() + "/reenact.db"});
   ASSERT_EQ(user.exit_code, 0) << user.err;
   const std::string token = user.out.substr(0, user.out.find('\n'));  // the token alone
   ASSERT_FALSE(token.empty()) << user.out;
@@ -57,14 +58,14 @@ TEST(EndToEnd, PublishBrowseAndPlayMatchesGroundTruthAtNovelViewpoint) {
                                  std::chrono::seconds(300));
   ASSERT_EQ(record.exit_code, 0) << record.err;
 
-  const auto publish = RunProcess({kCapture, "publish", clip_dir, "--server", url, "--token",
-                                   token, "--lat", "35.6595", "--lon", "139.7005"});
+  const auto publish = RunProcess({kCapture, "publish", clip_dir, "--server", url, "--token", token,
+                                   "--lat", "35.6595", "--lon", "139.7005"});
   ASSERT_EQ(publish.exit_code, 0) << publish.err;
   const std::string clip_id = Field(publish.out, R"(clip_id=(\S+))");
   ASSERT_FALSE(clip_id.empty()) << publish.out;
 
-  const auto browse = RunProcess({kViewer, "browse", "--server", url, "--near",
-                                  "35.6596,139.7006", "--radius-m", "100", "--json"});
+  const auto browse = RunProcess({kViewer, "browse", "--server", url, "--near", "35.6596,139.7006",
+                                  "--radius-m", "100", "--json"});
   ASSERT_EQ(browse.exit_code, 0) << browse.err;
   const auto listing = nlohmann::json::parse(browse.out);
   ASSERT_EQ(listing.size(), 1u);
@@ -72,10 +73,10 @@ TEST(EndToEnd, PublishBrowseAndPlayMatchesGroundTruthAtNovelViewpoint) {
   EXPECT_LT(listing[0]["distance_m"].get<double>(), 20.0);  // ~14 m by the haversine formula
 
   const std::string out = tmp.path() + "/out";
-  const auto play = RunProcess({kViewer, "play", clip_id, "--server", url, "--camera", "orbit",
-                                "--orbit-deg", "60", "--headless", "--out", out, "--masks",
-                                "--cache", tmp.path() + "/cache"},
-                               std::chrono::seconds(300));
+  const auto play =
+      RunProcess({kViewer, "play", clip_id, "--server", url, "--camera", "orbit", "--orbit-deg",
+                  "60", "--headless", "--out", out, "--masks", "--cache", tmp.path() + "/cache"},
+                 std::chrono::seconds(300));
   ASSERT_EQ(play.exit_code, 0) << play.err;
   EXPECT_EQ(server.Stop(), 0) << "server did not stop cleanly: " << server.stderr_text();
   // The default texturing relights: the scenario lights its subject, so the light is found and
@@ -116,8 +117,8 @@ TEST(EndToEnd, PublishBrowseAndPlayMatchesGroundTruthAtNovelViewpoint) {
     const int k = frames[i]["clip_frame"];
     const cv::Mat mask = cv::imread(out + "/frames/mask_" + cv::format("%04d", int(i)) + ".png",
                                     cv::IMREAD_GRAYSCALE);
-    const cv::Mat colour = cv::imread(out + "/" + frames[i]["file"].get<std::string>(),
-                                      cv::IMREAD_COLOR);
+    const cv::Mat colour =
+        cv::imread(out + "/" + frames[i]["file"].get<std::string>(), cv::IMREAD_COLOR);
     ASSERT_FALSE(mask.empty());
     ASSERT_FALSE(colour.empty());
     const capture::SyntheticView truth =
@@ -131,7 +132,8 @@ TEST(EndToEnd, PublishBrowseAndPlayMatchesGroundTruthAtNovelViewpoint) {
         uni += r || t;
         if (r && t) {
           const cv::Vec3b bgr = colour.at<cv::Vec3b>(y, x);
-          for (int c = 0; c < 3; ++c) colour_error += std::abs(bgr[2 - c] - truth.color.at(x, y, c));
+          for (int c = 0; c < 3; ++c)
+            colour_error += std::abs(bgr[2 - c] - truth.color.at(x, y, c));
           pixels += 3;
         }
       }
@@ -143,8 +145,10 @@ TEST(EndToEnd, PublishBrowseAndPlayMatchesGroundTruthAtNovelViewpoint) {
   const double mean_iou = iou_sum / checked, mean_colour_error = colour_error_sum / checked;
   RecordProperty("mean_iou", std::to_string(mean_iou));
   RecordProperty("mean_colour_error", std::to_string(mean_colour_error));
-  std::printf("novel view 60 deg: mean silhouette IoU %.3f, mean abs colour error %.1f / 255 "
-              "over %d frames\n", mean_iou, mean_colour_error, checked);
+  std::printf(
+      "novel view 60 deg: mean silhouette IoU %.3f, mean abs colour error %.1f / 255 "
+      "over %d frames\n",
+      mean_iou, mean_colour_error, checked);
   // Issue bound: a cylinder model of a tapered body keeps the silhouette IoU >= 0.7.
   EXPECT_GE(mean_iou, 0.7);
   // Colour: where both silhouettes agree the texture should come from the same body surface;

@@ -1,6 +1,6 @@
 #pragma once
-// A synthetic viewer camera: the [Eval] scenes (capture-client/synthetic/, the library
-// reenact_synthetic, not the capture pipeline) seen by a learner who walks around the spot the
+// A synthetic viewer camera: the [Eval] scenes (synthetic/, the library reenact_synthetic,
+// not the capture pipeline) seen by a learner who walks around the spot the
 // clip was recorded from, holding the phone, with the true pose of every frame known.
 //
 //   synthetic:SCENARIO[?frames=N&max_deg=D&subject=0|1&seed=S&body=FILE.glb&body_height=M]
@@ -14,7 +14,7 @@
 // centre (the skeleton's waist at frame 0) by
 //     a_k = D sin(2 pi k / (N - 1))        (0 -> +D -> 0 -> -D -> 0 degrees; D default 45)
 // at the sensor's distance and height, aimed at the centre, with a walking hand's bob and
-// shake (capture-client/synthetic/handheld_trajectory.h; seed S, default 1). Timestamps are
+// shake (synthetic/handheld_trajectory.h; seed S, default 1). Timestamps are
 // k / the scenario's frame rate.
 //
 // Frame k shows the scene at scenario frame k mod frame_count, rendered with the capture
@@ -31,8 +31,8 @@
 #include <string_view>
 #include <vector>
 
-#include "capture-client/synthetic/handheld_trajectory.h"
-#include "capture-client/synthetic/synthetic_scene.h"
+#include "synthetic/handheld_trajectory.h"
+#include "synthetic/synthetic_scene.h"
 #include "viewer-client/camera/camera_source.h"
 
 namespace reenact::viewer {

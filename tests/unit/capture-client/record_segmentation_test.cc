@@ -8,8 +8,8 @@
 
 #include "capture-client/record/clip_recorder.h"
 #include "capture-client/source/synthetic_source.h"
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "proto/clip/clip_directory.h"
+#include "synthetic/synthetic_scene.h"
 #include "tests/support/temp_dir.h"
 
 namespace reenact::capture {

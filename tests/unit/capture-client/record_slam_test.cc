@@ -9,10 +9,10 @@
 #include "capture-client/record/clip_recorder.h"
 #include "capture-client/source/synthetic_source.h"
 #include "capture-client/source/tum_source.h"
-#include "capture-client/synthetic/room.h"
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "common/align/trajectory_error.h"
 #include "proto/clip/clip_directory.h"
+#include "synthetic/room.h"
+#include "synthetic/synthetic_scene.h"
 #include "tests/support/as_real_sensor.h"
 #include "tests/support/temp_dir.h"
 

@@ -11,9 +11,9 @@
 #include "capture-client/segment/mask_overlap.h"
 #include "capture-client/segment/person_segmenter.h"
 #include "capture-client/segment/pixel_rays.h"
-#include "capture-client/synthetic/scenario.h"
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "common/error/check.h"
+#include "synthetic/scenario.h"
+#include "synthetic/synthetic_scene.h"
 
 namespace reenact::capture {
 namespace {

@@ -8,9 +8,9 @@
 
 #include "capture-client/segment/mask_overlap.h"
 #include "capture-client/segment/person_segmenter.h"
-#include "capture-client/synthetic/room.h"
-#include "capture-client/synthetic/scenario.h"
-#include "capture-client/synthetic/synthetic_scene.h"
+#include "synthetic/room.h"
+#include "synthetic/scenario.h"
+#include "synthetic/synthetic_scene.h"
 
 namespace reenact::capture {
 namespace {

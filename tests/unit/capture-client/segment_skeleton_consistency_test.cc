@@ -9,9 +9,9 @@
 #include <utility>
 
 #include "capture-client/segment/skeleton_consistency.h"
-#include "capture-client/synthetic/body_model.h"
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "common/error/check.h"
+#include "synthetic/body_model.h"
+#include "synthetic/synthetic_scene.h"
 
 namespace reenact::capture {
 namespace {

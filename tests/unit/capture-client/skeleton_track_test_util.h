@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "capture-client/synthetic/body_model.h"
 #include "common/skeleton/skeleton.h"
+#include "synthetic/body_model.h"
 #include "tests/support/temp_dir.h"
 
 namespace reenact::capture::skeleton_test {

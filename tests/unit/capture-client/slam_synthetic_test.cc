@@ -9,9 +9,9 @@
 
 #include "capture-client/slam/opencv_odometry.h"
 #include "capture-client/slam/rgbd_slam.h"
-#include "capture-client/synthetic/scenario.h"
 #include "common/align/trajectory_error.h"
 #include "common/geometry/rotation.h"
+#include "synthetic/scenario.h"
 #include "tests/unit/capture-client/slam_test_support.h"
 
 namespace reenact::capture::slam {

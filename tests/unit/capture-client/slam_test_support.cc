@@ -5,7 +5,7 @@
 #include <mutex>
 
 #include "capture-client/source/tum_source.h"
-#include "capture-client/synthetic/synthetic_scene.h"
+#include "synthetic/synthetic_scene.h"
 
 namespace reenact::capture::slam::test_input {
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "common/geometry/pinhole_camera.h"
 #include "common/image/image.h"
+#include "synthetic/synthetic_scene.h"
 
 namespace reenact::capture::slam::test_input {
 

@@ -8,8 +8,8 @@
 #include <cmath>
 #include <numbers>
 
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "common/error/check.h"
+#include "synthetic/synthetic_scene.h"
 
 namespace reenact::capture {
 namespace {

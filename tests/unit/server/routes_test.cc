@@ -8,18 +8,15 @@
 namespace reenact::server {
 namespace {
 
+using nlohmann::json;
 using testing::MakeTestClip;
 using testing::ServiceFixture;
 using testing::TestClip;
-using nlohmann::json;
 
 using RoutesTest = ServiceFixture;
 
 std::optional<std::string> HeaderOf(const Response& r, const std::string& name) {
-  for (const auto& [k, v] : r.headers) {
-    if (EqualsIgnoreCase(k, name)) return v;
-  }
-  return std::nullopt;
+  return proto::FindHeader(r.headers, name);
 }
 
 TEST_F(RoutesTest, CreateWithoutTokenIs401) {
@@ -32,8 +29,8 @@ TEST_F(RoutesTest, CreateWithoutTokenIs401) {
 
 TEST_F(RoutesTest, CreateWithUnknownTokenIs401) {
   const TestClip clip = MakeTestClip(1, 2);
-  Response r = Call("POST", "/v1/clips", "rnk_not-a-real-token", clip.manifest_json,
-                    "application/json");
+  Response r =
+      Call("POST", "/v1/clips", "rnk_not-a-real-token", clip.manifest_json, "application/json");
   EXPECT_EQ(r.status, 401);
   Request basic;
   basic.method = "POST";
@@ -66,15 +63,15 @@ TEST_F(RoutesTest, CreateRejectsInvalidManifestWith422) {
 
 TEST_F(RoutesTest, CreateRejectsOversizedManifestWith413) {
   context_->limits.max_manifest_bytes = 100;
-  Response r = Call("POST", "/v1/clips", alice_, MakeTestClip(1, 2).manifest_json,
-                    "application/json");
+  Response r =
+      Call("POST", "/v1/clips", alice_, MakeTestClip(1, 2).manifest_json, "application/json");
   EXPECT_EQ(r.status, 413);
 }
 
 TEST_F(RoutesTest, CreateRejectsFrameDeclaredBeyondLimit) {
   context_->limits.max_frame_bytes = 5;
-  Response r = Call("POST", "/v1/clips", alice_, MakeTestClip(1, 2).manifest_json,
-                    "application/json");
+  Response r =
+      Call("POST", "/v1/clips", alice_, MakeTestClip(1, 2).manifest_json, "application/json");
   EXPECT_EQ(r.status, 422);
   EXPECT_NE(ErrorMessage(r).find("frame 0"), std::string::npos);
 }
@@ -98,13 +95,16 @@ TEST_F(RoutesTest, PutRejectsBadFrameNumbers) {
   const TestClip clip = MakeTestClip(1, 2, 3);
   const std::string id = Create(clip, alice_);
   EXPECT_EQ(Call("PUT", "/v1/clips/" + id + "/frames/3", alice_, clip.frames[0],
-                 "application/octet-stream").status,
+                 "application/octet-stream")
+                .status,
             404);
   EXPECT_EQ(Call("PUT", "/v1/clips/" + id + "/frames/-1", alice_, clip.frames[0],
-                 "application/octet-stream").status,
+                 "application/octet-stream")
+                .status,
             400);
   EXPECT_EQ(Call("PUT", "/v1/clips/" + id + "/frames/x", alice_, clip.frames[0],
-                 "application/octet-stream").status,
+                 "application/octet-stream")
+                .status,
             400);
 }
 
@@ -122,9 +122,9 @@ TEST_F(RoutesTest, PutIsIdempotent) {
 TEST_F(RoutesTest, OtherUsersCannotWriteOrSeeADraft) {
   const TestClip clip = MakeTestClip(1, 2);
   const std::string id = Create(clip, alice_);
-  EXPECT_EQ(Call("PUT", "/v1/clips/" + id + "/map", bob_, clip.map, "application/octet-stream")
-                .status,
-            404);
+  EXPECT_EQ(
+      Call("PUT", "/v1/clips/" + id + "/map", bob_, clip.map, "application/octet-stream").status,
+      404);
   EXPECT_EQ(Call("GET", "/v1/clips/" + id, bob_).status, 404);
   EXPECT_EQ(Call("GET", "/v1/clips/" + id).status, 404);
   EXPECT_EQ(Call("GET", "/v1/clips/" + id, alice_).status, 200);
@@ -134,7 +134,8 @@ TEST_F(RoutesTest, PublishNamesMissingPartsThenSucceeds) {
   const TestClip clip = MakeTestClip(1, 2, 3);
   const std::string id = Create(clip, alice_);
   ASSERT_EQ(Call("PUT", "/v1/clips/" + id + "/frames/0", alice_, clip.frames[0],
-                 "application/octet-stream").status,
+                 "application/octet-stream")
+                .status,
             204);
   Response early = Call("POST", "/v1/clips/" + id + "/publish", alice_);
   EXPECT_EQ(early.status, 409);
@@ -148,12 +149,13 @@ TEST_F(RoutesTest, PublishNamesMissingPartsThenSucceeds) {
 
   for (int n = 1; n < 3; ++n) {
     ASSERT_EQ(Call("PUT", "/v1/clips/" + id + "/frames/" + std::to_string(n), alice_,
-                   clip.frames[n], "application/octet-stream").status,
+                   clip.frames[n], "application/octet-stream")
+                  .status,
               204);
   }
-  ASSERT_EQ(Call("PUT", "/v1/clips/" + id + "/map", alice_, clip.map, "application/octet-stream")
-                .status,
-            204);
+  ASSERT_EQ(
+      Call("PUT", "/v1/clips/" + id + "/map", alice_, clip.map, "application/octet-stream").status,
+      204);
   EXPECT_EQ(Call("POST", "/v1/clips/" + id + "/publish", bob_).status, 404);
   EXPECT_EQ(Call("POST", "/v1/clips/" + id + "/publish", alice_).status, 200);
   EXPECT_EQ(Call("GET", "/v1/clips/" + id).status, 200);
@@ -197,9 +199,9 @@ TEST_F(RoutesTest, OnlyOwnerDeletesAndDeleteRemovesEveryPart) {
   const TestClip clip = MakeTestClip(1, 2);
   const std::string id = Publish(clip, alice_);
   EXPECT_EQ(Call("DELETE", "/v1/clips/" + id, bob_).status, 403);
-  EXPECT_EQ(Call("PUT", "/v1/clips/" + id + "/map", bob_, clip.map, "application/octet-stream")
-                .status,
-            403);
+  EXPECT_EQ(
+      Call("PUT", "/v1/clips/" + id + "/map", bob_, clip.map, "application/octet-stream").status,
+      403);
   EXPECT_EQ(Call("DELETE", "/v1/clips/" + id).status, 401);
   EXPECT_EQ(Call("DELETE", "/v1/clips/" + id, alice_).status, 204);
   EXPECT_EQ(Call("GET", "/v1/clips/" + id, alice_).status, 404);

@@ -15,9 +15,9 @@
 
 #include "capture-client/record/clip_recorder.h"
 #include "capture-client/source/synthetic_source.h"
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "common/error/check.h"
 #include "proto/clip/clip_directory.h"
+#include "synthetic/synthetic_scene.h"
 #include "viewer-client/play/ar_pipeline.h"
 #include "viewer-client/play/ar_player.h"
 #include "viewer-client/play/orbit_camera.h"

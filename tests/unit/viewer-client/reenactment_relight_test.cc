@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "capture-client/synthetic/room.h"
+#include "synthetic/room.h"
 #include "tests/unit/viewer-client/recorded_synthetic_clip.h"
 #include "viewer-client/play/texturing_presets.h"
 #include "viewer-client/play/viewer_camera.h"

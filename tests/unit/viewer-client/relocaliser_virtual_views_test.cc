@@ -11,8 +11,8 @@
 
 #include "capture-client/map/background_map_builder.h"
 #include "capture-client/map/virtual_views.h"
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "common/error/check.h"
+#include "synthetic/synthetic_scene.h"
 #include "viewer-client/play/orbit_camera.h"
 #include "viewer-client/reloc/relocaliser.h"
 

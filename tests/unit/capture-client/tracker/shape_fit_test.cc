@@ -10,10 +10,10 @@
 #include <filesystem>
 #include <string>
 
-#include "capture-client/synthetic/skinned_body.h"
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "capture-client/tracker/body_calibration.h"
 #include "common/error/check.h"
+#include "synthetic/skinned_body.h"
+#include "synthetic/synthetic_scene.h"
 
 namespace reenact::capture {
 namespace {

@@ -14,12 +14,12 @@
 #include <vector>
 
 #include "capture-client/slam/rgbd_slam.h"
-#include "capture-client/synthetic/synthetic_scene.h"
 #include "capture-client/tracker/front_check_step.h"
 #include "capture-client/tracker/travel_heading_step.h"
 #include "capture-client/tracker/turned_starts_step.h"
 #include "capture-client/tracker/uncross_step.h"
 #include "common/error/check.h"
+#include "synthetic/synthetic_scene.h"
 #include "tests/unit/capture-client/tracker/tracker_test_scenes.h"
 
 namespace reenact::capture {
@@ -112,7 +112,7 @@ TEST(BodyCalibration, CalibrationPoseGivesTheSkeletonAndRadii) {
   EXPECT_LT(MaxJointError(s, Truth(0)), 0.07);
   // The trunk's breadth, measured at the abdomen (body_calibration.h step 4): the procedural
   // abdomen's half breadth runs from 16.5 cm at its bottom to 14.5 at its top
-  // (capture-client/synthetic/body_mesh.cc); within the silhouette grid's 1.2 cm of that.
+  // (synthetic/body_mesh.cc); within the silhouette grid's 1.2 cm of that.
   const double half_breadth = c.shape.torso_radius + c.shape.torso_half_spread;
   EXPECT_GT(half_breadth, 0.145 - 0.012);
   EXPECT_LT(half_breadth, 0.165 + 0.012);
