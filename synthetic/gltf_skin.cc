@@ -200,39 +200,42 @@ Expected<std::vector<Eigen::Vector3i>> AssembleTriangles(const Reader& r, int mo
 }
 
 // Appends one primitive's vertices and triangles to `out`.
-Status ReadPrimitive(const Reader& r, const tinygltf::Primitive& p, const std::string& what,
-                     int texcoord_set, int joint_count, GltfSkinModel* out, int* normalised,
-                     int* extra_influences, bool* generated_normals) {
-  const auto attribute = [&](const std::string& name) {
-    const auto it = p.attributes.find(name);
-    return it == p.attributes.end() ? -1 : it->second;
-  };
-  if (attribute("POSITION") < 0) return r.Corrupt(what + " has no POSITION attribute");
-  Expected<Reader::Values> pos =
-      r.Read(attribute("POSITION"), what + " POSITION", {TINYGLTF_TYPE_VEC3}, kFloat);
-  if (!pos.ok()) return pos.error();
-  const size_t n = pos->count;
-  if (!AllFinite(pos->v)) return r.Corrupt(what + " POSITION has a value that is not finite");
-  const auto read_sized = [&](const std::string& name, int type,
-                              const std::vector<int>& components) -> Expected<Reader::Values> {
-    Expected<Reader::Values> v = r.Read(attribute(name), what + " " + name, {type}, components);
+// A primitive's attributes by name, each read with the primitive's vertex count checked.
+class PrimitiveAttributes {
+ public:
+  PrimitiveAttributes(const Reader& r, const tinygltf::Primitive& p, const std::string& what)
+      : r_(r), p_(p), what_(what) {}
+
+  // The attribute's accessor, -1 where the primitive has none.
+  int Find(const std::string& name) const {
+    const auto it = p_.attributes.find(name);
+    return it == p_.attributes.end() ? -1 : it->second;
+  }
+  // The attribute's values: `type` of one of `components`, n elements, all finite.
+  Expected<Reader::Values> ReadSized(const std::string& name, int type,
+                                     const std::vector<int>& components, size_t n) const {
+    Expected<Reader::Values> v = r_.Read(Find(name), what_ + " " + name, {type}, components);
     if (!v.ok()) return v;
     if (v->count != n)
-      return r.Corrupt(what + " " + name + " has " + std::to_string(v->count) +
-                       " elements but POSITION has " + std::to_string(n));
-    if (!AllFinite(v->v)) return r.Corrupt(what + " " + name + " has a value that is not finite");
+      return r_.Corrupt(what_ + " " + name + " has " + std::to_string(v->count) +
+                        " elements but POSITION has " + std::to_string(n));
+    if (!AllFinite(v->v)) return r_.Corrupt(what_ + " " + name + " has a value that is not finite");
     return v;
-  };
-  if (attribute("JOINTS_0") < 0 || attribute("WEIGHTS_0") < 0)
-    return r.Corrupt(what + " of the skinned mesh has no JOINTS_0 / WEIGHTS_0 attributes");
+  }
 
-  const size_t first = out->vertices.size();
-  out->vertices.resize(first + n);
-  for (size_t i = 0; i < n; ++i)
-    out->vertices[first + i].position = Vector3d(pos->at(i, 0), pos->at(i, 1), pos->at(i, 2));
+ private:
+  const Reader& r_;
+  const tinygltf::Primitive& p_;
+  const std::string& what_;
+};
 
-  if (attribute("NORMAL") >= 0) {
-    Expected<Reader::Values> nor = read_sized("NORMAL", TINYGLTF_TYPE_VEC3, kFloat);
+// Normals (unit; *generated where the primitive has none) and texture coordinates (set
+// texcoord_set, where the texture needs them) of vertices [first, first + n).
+Status ReadNormalsAndUv(const Reader& r, const PrimitiveAttributes& a, const std::string& what,
+                        int texcoord_set, size_t first, size_t n, GltfSkinModel* out,
+                        bool* generated_normals) {
+  if (a.Find("NORMAL") >= 0) {
+    Expected<Reader::Values> nor = a.ReadSized("NORMAL", TINYGLTF_TYPE_VEC3, kFloat, n);
     if (!nor.ok()) return nor.error();
     for (size_t i = 0; i < n; ++i) {
       const Vector3d v(nor->at(i, 0), nor->at(i, 1), nor->at(i, 2));
@@ -242,29 +245,36 @@ Status ReadPrimitive(const Reader& r, const tinygltf::Primitive& p, const std::s
   } else {
     *generated_normals = true;
   }
-
   if (texcoord_set >= 0) {
     const std::string name = "TEXCOORD_" + std::to_string(texcoord_set);
-    if (attribute(name) < 0)
+    if (a.Find(name) < 0)
       return r.Corrupt(what + " has no " + name + " attribute, which its texture needs");
-    Expected<Reader::Values> uv = read_sized(name, TINYGLTF_TYPE_VEC2, kFloatOrNormalizedUnsigned);
+    Expected<Reader::Values> uv =
+        a.ReadSized(name, TINYGLTF_TYPE_VEC2, kFloatOrNormalizedUnsigned, n);
     if (!uv.ok()) return uv.error();
     for (size_t i = 0; i < n; ++i)
       out->vertices[first + i].uv = Eigen::Vector2d(uv->at(i, 0), uv->at(i, 1));
   }
+  return {};
+}
 
-  // Influences of both sets, the four largest kept.
+// Skin influences of vertices [first, first + n) from both JOINTS/WEIGHTS sets, the four
+// largest kept (*extra_influences counts the vertices that had more) and normalised
+// (*normalised counts those whose weights did not sum to 1).
+Status ReadInfluences(const Reader& r, const PrimitiveAttributes& a, const std::string& what,
+                      int joint_count, size_t first, size_t n, GltfSkinModel* out, int* normalised,
+                      int* extra_influences) {
   std::vector<std::pair<Expected<Reader::Values>, Expected<Reader::Values>>> sets;
   for (int set = 0; set < 2; ++set) {
     const std::string j = "JOINTS_" + std::to_string(set), w = "WEIGHTS_" + std::to_string(set);
-    if (attribute(j) < 0 && attribute(w) < 0) continue;
-    if (attribute(j) < 0 || attribute(w) < 0)
+    if (a.Find(j) < 0 && a.Find(w) < 0) continue;
+    if (a.Find(j) < 0 || a.Find(w) < 0)
       return r.Corrupt(what + " has one of " + j + " and " + w + " without the other");
-    Expected<Reader::Values> jv =
-        read_sized(j, TINYGLTF_TYPE_VEC4,
-                   {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+    Expected<Reader::Values> jv = a.ReadSized(
+        j, TINYGLTF_TYPE_VEC4,
+        {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}, n);
     if (!jv.ok()) return jv.error();
-    Expected<Reader::Values> wv = read_sized(w, TINYGLTF_TYPE_VEC4, kFloatOrNormalizedUnsigned);
+    Expected<Reader::Values> wv = a.ReadSized(w, TINYGLTF_TYPE_VEC4, kFloatOrNormalizedUnsigned, n);
     if (!wv.ok()) return wv.error();
     sets.emplace_back(std::move(jv), std::move(wv));
   }
@@ -302,7 +312,12 @@ Status ReadPrimitive(const Reader& r, const tinygltf::Primitive& p, const std::s
       v.joints[k] = influences[k].second;
     }
   }
+  return {};
+}
 
+// The primitive's triangles, its indices checked against its n vertices, offset by first.
+Status ReadTriangles(const Reader& r, const tinygltf::Primitive& p, const std::string& what,
+                     size_t first, size_t n, GltfSkinModel* out) {
   std::vector<int64_t> idx;
   if (p.indices >= 0) {
     Expected<Reader::Values> iv =
@@ -327,6 +342,32 @@ Status ReadPrimitive(const Reader& r, const tinygltf::Primitive& p, const std::s
   for (const Eigen::Vector3i& t : *tris)
     out->triangles.push_back(t + Eigen::Vector3i::Constant(static_cast<int>(first)));
   return {};
+}
+
+Status ReadPrimitive(const Reader& r, const tinygltf::Primitive& p, const std::string& what,
+                     int texcoord_set, int joint_count, GltfSkinModel* out, int* normalised,
+                     int* extra_influences, bool* generated_normals) {
+  const PrimitiveAttributes a(r, p, what);
+  if (a.Find("POSITION") < 0) return r.Corrupt(what + " has no POSITION attribute");
+  Expected<Reader::Values> pos =
+      r.Read(a.Find("POSITION"), what + " POSITION", {TINYGLTF_TYPE_VEC3}, kFloat);
+  if (!pos.ok()) return pos.error();
+  const size_t n = pos->count;
+  if (!AllFinite(pos->v)) return r.Corrupt(what + " POSITION has a value that is not finite");
+  if (a.Find("JOINTS_0") < 0 || a.Find("WEIGHTS_0") < 0)
+    return r.Corrupt(what + " of the skinned mesh has no JOINTS_0 / WEIGHTS_0 attributes");
+  const size_t first = out->vertices.size();
+  out->vertices.resize(first + n);
+  for (size_t i = 0; i < n; ++i)
+    out->vertices[first + i].position = Vector3d(pos->at(i, 0), pos->at(i, 1), pos->at(i, 2));
+  if (Status s = ReadNormalsAndUv(r, a, what, texcoord_set, first, n, out, generated_normals);
+      !s.ok())
+    return s.error();
+  if (Status s =
+          ReadInfluences(r, a, what, joint_count, first, n, out, normalised, extra_influences);
+      !s.ok())
+    return s.error();
+  return ReadTriangles(r, p, what, first, n, out);
 }
 
 Expected<GltfTexture> ReadTexture(const Reader& r, int texture_index) {
@@ -385,6 +426,31 @@ Expected<GltfTexture> ReadTexture(const Reader& r, int texture_index) {
   return tex;
 }
 
+// A sampler's interpolation and key times (increasing); its values are read per channel.
+Expected<GltfAnimationSampler> ReadSamplerKeys(const Reader& r, const tinygltf::AnimationSampler& s,
+                                               const std::string& sw) {
+  GltfAnimationSampler out_s;
+  if (s.interpolation == "LINEAR" || s.interpolation.empty())
+    out_s.interpolation = AnimationInterpolation::kLinear;
+  else if (s.interpolation == "STEP")
+    out_s.interpolation = AnimationInterpolation::kStep;
+  else if (s.interpolation == "CUBICSPLINE")
+    return r.Unsupported(sw +
+                         " uses CUBICSPLINE interpolation, which is not read; "
+                         "re-export the animation with linear interpolation");
+  else
+    return r.Corrupt(sw + " has an unknown interpolation '" + s.interpolation + "'");
+  Expected<Reader::Values> in = r.Read(s.input, sw + " input", {TINYGLTF_TYPE_SCALAR}, kFloat);
+  if (!in.ok()) return in.error();
+  if (in->count == 0) return r.Corrupt(sw + " has no key times");
+  if (!AllFinite(in->v)) return r.Corrupt(sw + " has a key time that is not finite");
+  for (size_t k = 1; k < in->count; ++k)
+    if (in->v[k] < in->v[k - 1])
+      return r.Corrupt(sw + " has key times that decrease (key " + std::to_string(k) + ")");
+  out_s.times = in->v;
+  return out_s;
+}
+
 Status ReadAnimations(const Reader& r, GltfSkinModel* out) {
   const tinygltf::Model& m = r.model();
   int ignored_channels = 0;
@@ -419,30 +485,11 @@ Status ReadAnimations(const Reader& r, GltfSkinModel* out) {
         return r.Corrupt(cw + " refers to sampler " + std::to_string(ch.sampler) +
                          " which does not exist");
       if (sampler_of[ch.sampler] < 0) {
-        const tinygltf::AnimationSampler& s = src.samplers[ch.sampler];
-        const std::string sw = what + " sampler " + std::to_string(ch.sampler);
-        GltfAnimationSampler out_s;
-        if (s.interpolation == "LINEAR" || s.interpolation.empty())
-          out_s.interpolation = AnimationInterpolation::kLinear;
-        else if (s.interpolation == "STEP")
-          out_s.interpolation = AnimationInterpolation::kStep;
-        else if (s.interpolation == "CUBICSPLINE")
-          return r.Unsupported(sw +
-                               " uses CUBICSPLINE interpolation, which is not read; "
-                               "re-export the animation with linear interpolation");
-        else
-          return r.Corrupt(sw + " has an unknown interpolation '" + s.interpolation + "'");
-        Expected<Reader::Values> in =
-            r.Read(s.input, sw + " input", {TINYGLTF_TYPE_SCALAR}, kFloat);
-        if (!in.ok()) return in.error();
-        if (in->count == 0) return r.Corrupt(sw + " has no key times");
-        if (!AllFinite(in->v)) return r.Corrupt(sw + " has a key time that is not finite");
-        for (size_t k = 1; k < in->count; ++k)
-          if (in->v[k] < in->v[k - 1])
-            return r.Corrupt(sw + " has key times that decrease (key " + std::to_string(k) + ")");
-        out_s.times = in->v;
+        Expected<GltfAnimationSampler> keys = ReadSamplerKeys(
+            r, src.samplers[ch.sampler], what + " sampler " + std::to_string(ch.sampler));
+        if (!keys.ok()) return keys.error();
         sampler_of[ch.sampler] = static_cast<int>(anim.samplers.size());
-        anim.samplers.push_back(std::move(out_s));
+        anim.samplers.push_back(std::move(keys).value());
       }
       GltfAnimationSampler& s = anim.samplers[sampler_of[ch.sampler]];
       const tinygltf::AnimationSampler& ss = src.samplers[ch.sampler];
@@ -542,52 +589,51 @@ Status ReadNodes(const Reader& r, GltfSkinModel* out) {
   return {};
 }
 
-Expected<GltfSkinModel> Convert(const tinygltf::Model& m, const std::string& path) {
-  const Reader r(m, path);
-  GltfSkinModel out;
-  out.path = path;
-  if (m.asset.version.empty() || m.asset.version[0] != '2')
-    return r.Unsupported("glTF version '" + m.asset.version + "' is not read; only glTF 2.x");
-  Status nodes = ReadNodes(r, &out);
-  if (!nodes.ok()) return nodes.error();
-
-  // The skinned mesh.
+// The first node with a mesh and a skin (out->mesh_node); other meshes are counted in a warning.
+Status FindSkinnedMesh(const Reader& r, GltfSkinModel* out) {
+  const tinygltf::Model& m = r.model();
   int other_meshes = 0;
   for (int i = 0; i < static_cast<int>(m.nodes.size()); ++i) {
     if (m.nodes[i].mesh < 0) continue;
     if (m.nodes[i].mesh >= static_cast<int>(m.meshes.size()))
       return r.Corrupt("node " + std::to_string(i) + " refers to mesh " +
                        std::to_string(m.nodes[i].mesh) + " which does not exist");
-    if (m.nodes[i].skin >= 0 && out.mesh_node < 0)
-      out.mesh_node = i;
+    if (m.nodes[i].skin >= 0 && out->mesh_node < 0)
+      out->mesh_node = i;
     else
       ++other_meshes;
   }
   if (m.meshes.empty()) return r.Unsupported("the file has no mesh; a skinned body mesh is needed");
-  if (out.mesh_node < 0)
+  if (out->mesh_node < 0)
     return r.Unsupported("no node has both a mesh and a skin: the file has no skinned mesh");
   if (other_meshes > 0)
-    out.warnings.push_back(std::to_string(other_meshes) +
-                           " other mesh nodes were ignored (only the first skinned mesh is read)");
-  const tinygltf::Node& mesh_node = m.nodes[out.mesh_node];
+    out->warnings.push_back(std::to_string(other_meshes) +
+                            " other mesh nodes were ignored (only the first skinned mesh is read)");
+  return {};
+}
+
+// The skin of the mesh node: its joint nodes and inverse bind matrices.
+Status ReadSkin(const Reader& r, GltfSkinModel* out) {
+  const tinygltf::Model& m = r.model();
+  const tinygltf::Node& mesh_node = m.nodes[out->mesh_node];
   if (mesh_node.skin >= static_cast<int>(m.skins.size()))
-    return r.Corrupt("node " + std::to_string(out.mesh_node) + " refers to skin " +
+    return r.Corrupt("node " + std::to_string(out->mesh_node) + " refers to skin " +
                      std::to_string(mesh_node.skin) + " which does not exist");
   const tinygltf::Skin& skin = m.skins[mesh_node.skin];
   if (skin.joints.empty())
     return r.Corrupt("skin " + std::to_string(mesh_node.skin) + " has no joints");
   for (int j : skin.joints) {
-    if (j < 0 || j >= static_cast<int>(out.nodes.size()))
+    if (j < 0 || j >= static_cast<int>(out->nodes.size()))
       return r.Corrupt("skin " + std::to_string(mesh_node.skin) + " names joint node " +
                        std::to_string(j) + " which does not exist");
-    out.joint_nodes.push_back(j);
+    out->joint_nodes.push_back(j);
   }
-  const int joint_count = static_cast<int>(out.joint_nodes.size());
+  const int joint_count = static_cast<int>(out->joint_nodes.size());
   if (skin.inverseBindMatrices >= 0) {
     Expected<Reader::Values> ibm = r.Read(skin.inverseBindMatrices, "skin inverse bind matrices",
                                           {TINYGLTF_TYPE_MAT4}, kFloat);
     if (!ibm.ok()) return ibm.error();
-    if (ibm->count != out.joint_nodes.size())
+    if (ibm->count != out->joint_nodes.size())
       return r.Corrupt("the skin has " + std::to_string(joint_count) + " joints but " +
                        std::to_string(ibm->count) + " inverse bind matrices");
     for (size_t k = 0; k < ibm->count; ++k) {
@@ -596,80 +642,111 @@ Expected<GltfSkinModel> Convert(const tinygltf::Model& m, const std::string& pat
         for (int row = 0; row < 4; ++row) a(row, c) = ibm->at(k, c * 4 + row);
       if (!a.allFinite() || std::abs(a.block<3, 3>(0, 0).determinant()) < 1e-12)
         return r.Corrupt("inverse bind matrix " + std::to_string(k) + " is singular or not finite");
-      out.inverse_bind.emplace_back(a);
+      out->inverse_bind.emplace_back(a);
     }
   } else {
-    out.inverse_bind.assign(joint_count, Eigen::Affine3d::Identity());
+    out->inverse_bind.assign(joint_count, Eigen::Affine3d::Identity());
   }
 
-  // Material and texture.
-  const tinygltf::Mesh& mesh = m.meshes[mesh_node.mesh];
+  return {};
+}
+
+// The mesh's one material: double-sidedness, base colour factor and texture; *texcoord_set:
+// the texture's coordinate set (-1 without a texture).
+Status ReadMaterial(const Reader& r, const tinygltf::Mesh& mesh, int mesh_index, GltfSkinModel* out,
+                    int* texcoord_set) {
+  const tinygltf::Model& m = r.model();
   if (mesh.primitives.empty())
-    return r.Corrupt("mesh " + std::to_string(mesh_node.mesh) + " has no primitives");
+    return r.Corrupt("mesh " + std::to_string(mesh_index) + " has no primitives");
   const int material = mesh.primitives[0].material;
   for (const tinygltf::Primitive& p : mesh.primitives)
     if (p.material != material)
       return r.Unsupported(
           "the skinned mesh's primitives use different materials; merge them "
           "into one textured material");
-  int texcoord_set = -1;
   if (material >= static_cast<int>(m.materials.size()))
     return r.Corrupt("the skinned mesh refers to material " + std::to_string(material) +
                      " which does not exist");
   if (material >= 0) {
     const tinygltf::Material& mat = m.materials[material];
-    out.double_sided = mat.doubleSided;
+    out->double_sided = mat.doubleSided;
     const std::vector<double>& f = mat.pbrMetallicRoughness.baseColorFactor;
     if (f.size() != 4 || !AllFinite(f))
       return r.Corrupt("material " + std::to_string(material) + " has a malformed baseColorFactor");
-    out.base_color_factor = Vector4d(f[0], f[1], f[2], f[3]).cwiseMax(0.0).cwiseMin(1.0);
+    out->base_color_factor = Vector4d(f[0], f[1], f[2], f[3]).cwiseMax(0.0).cwiseMin(1.0);
     const tinygltf::TextureInfo& info = mat.pbrMetallicRoughness.baseColorTexture;
     if (info.index >= 0) {
       Expected<GltfTexture> tex = ReadTexture(r, info.index);
       if (!tex.ok()) return tex.error();
-      out.base_color_texture = std::move(tex).value();
-      texcoord_set = std::max(info.texCoord, 0);
+      out->base_color_texture = std::move(tex).value();
+      *texcoord_set = std::max(info.texCoord, 0);
     }
   }
-  if (out.base_color_texture.image.empty()) {
-    const Vector4d& f = out.base_color_factor;
+  if (out->base_color_texture.image.empty()) {
+    const Vector4d& f = out->base_color_factor;
     char buf[96];
     std::snprintf(buf, sizeof(buf), "(%.3f, %.3f, %.3f)", f[0], f[1], f[2]);
-    out.warnings.push_back(std::string("no base colour texture: the body is drawn in the ") +
-                           (material >= 0 ? "material's base colour factor " : "default white ") +
-                           buf);
+    out->warnings.push_back(std::string("no base colour texture: the body is drawn in the ") +
+                            (material >= 0 ? "material's base colour factor " : "default white ") +
+                            buf);
   }
 
-  // Geometry.
+  return {};
+}
+
+// Every primitive's vertices and triangles, normals computed where the mesh has none, and the
+// warnings of what was adjusted or ignored.
+Status ReadGeometry(const Reader& r, const tinygltf::Mesh& mesh, int mesh_index, int texcoord_set,
+                    GltfSkinModel* out) {
+  const int joint_count = static_cast<int>(out->joint_nodes.size());
   int normalised = 0, extra_influences = 0, morph = 0;
   bool generated_normals = false;
   for (size_t k = 0; k < mesh.primitives.size(); ++k) {
     const std::string what =
-        "mesh " + std::to_string(mesh_node.mesh) + " primitive " + std::to_string(k);
+        "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(k);
     if (!mesh.primitives[k].targets.empty()) ++morph;
-    Status s = ReadPrimitive(r, mesh.primitives[k], what, texcoord_set, joint_count, &out,
+    Status s = ReadPrimitive(r, mesh.primitives[k], what, texcoord_set, joint_count, out,
                              &normalised, &extra_influences, &generated_normals);
     if (!s.ok()) return s.error();
   }
-  if (out.triangles.empty()) return r.Corrupt("the skinned mesh has no triangles");
+  if (out->triangles.empty()) return r.Corrupt("the skinned mesh has no triangles");
   if (generated_normals) {
-    std::vector<Vector3d> acc(out.vertices.size(), Vector3d::Zero());
-    for (const Eigen::Vector3i& t : out.triangles) {
-      const Vector3d n = TriangleNormal(out.vertices, t);  // length = 2 x area
+    std::vector<Vector3d> acc(out->vertices.size(), Vector3d::Zero());
+    for (const Eigen::Vector3i& t : out->triangles) {
+      const Vector3d n = TriangleNormal(out->vertices, t);  // length = 2 x area
       for (int c = 0; c < 3; ++c) acc[t[c]] += n;
     }
     for (size_t i = 0; i < acc.size(); ++i)
-      if (acc[i].norm() > 0) out.vertices[i].normal = acc[i].normalized();
-    out.warnings.push_back("the mesh has no normals: area-weighted vertex normals were computed");
+      if (acc[i].norm() > 0) out->vertices[i].normal = acc[i].normalized();
+    out->warnings.push_back("the mesh has no normals: area-weighted vertex normals were computed");
   }
   if (normalised > 0)
-    out.warnings.push_back(std::to_string(normalised) +
-                           " vertices had skin weights that do not sum to 1; they were normalised");
+    out->warnings.push_back(
+        std::to_string(normalised) +
+        " vertices had skin weights that do not sum to 1; they were normalised");
   if (extra_influences > 0)
-    out.warnings.push_back(std::to_string(extra_influences) +
-                           " vertices had more than 4 joint influences; the 4 largest were kept");
-  if (morph > 0) out.warnings.push_back("morph targets were ignored");
+    out->warnings.push_back(std::to_string(extra_influences) +
+                            " vertices had more than 4 joint influences; the 4 largest were kept");
+  if (morph > 0) out->warnings.push_back("morph targets were ignored");
 
+  return {};
+}
+
+Expected<GltfSkinModel> Convert(const tinygltf::Model& m, const std::string& path) {
+  const Reader r(m, path);
+  GltfSkinModel out;
+  out.path = path;
+  if (m.asset.version.empty() || m.asset.version[0] != '2')
+    return r.Unsupported("glTF version '" + m.asset.version + "' is not read; only glTF 2.x");
+  Status nodes = ReadNodes(r, &out);
+  if (!nodes.ok()) return nodes.error();
+  if (Status s = FindSkinnedMesh(r, &out); !s.ok()) return s.error();
+  if (Status s = ReadSkin(r, &out); !s.ok()) return s.error();
+  const int mesh_index = m.nodes[out.mesh_node].mesh;
+  const tinygltf::Mesh& mesh = m.meshes[mesh_index];
+  int texcoord_set = -1;
+  if (Status s = ReadMaterial(r, mesh, mesh_index, &out, &texcoord_set); !s.ok()) return s.error();
+  if (Status s = ReadGeometry(r, mesh, mesh_index, texcoord_set, &out); !s.ok()) return s.error();
   Status anims = ReadAnimations(r, &out);
   if (!anims.ok()) return anims.error();
   return out;
