@@ -2,6 +2,7 @@
 // The #include lines of the project's own sources, for the dependency tests that hold the
 // layer rules of DESIGN.md (tests/unit/*/dependency_test.cc).
 
+#include <cstddef>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
@@ -48,17 +49,6 @@ inline bool StartsWithAnyOf(std::string_view s, std::initializer_list<std::strin
   return false;
 }
 
-// "FILE includes HEADER" for each of includes that breaks a rule (breaks(include) is true):
-// empty when the rule holds, and the failure message when it does not.
-template <typename BreaksRule>
-std::vector<std::string> Breaking(const std::vector<IncludeLine>& includes, BreaksRule breaks) {
-  std::vector<std::string> out;
-  for (const IncludeLine& include : includes) {
-    if (breaks(include)) out.push_back(include.file + " includes " + include.header);
-  }
-  return out;
-}
-
 // A standard library header: <vector>, <cmath>, ... (no directory, no extension).
 inline bool IsStdHeader(std::string_view header) {
   return header.find('/') == std::string_view::npos && header.find('.') == std::string_view::npos;
@@ -67,6 +57,24 @@ inline bool IsStdHeader(std::string_view header) {
 // Any OpenCV header, OpenCV 4's <opencv2/...> or the old C API's <opencv/...>.
 inline bool IsOpenCvHeader(std::string_view header) {
   return StartsWith(header, "opencv2/") || StartsWith(header, "opencv/");
+}
+
+// "FILE includes HEADER" for each include below folder that breaks a rule (breaks(include) is
+// true), and a line saying so when the folder has fewer than min_includes includes (a moved or
+// emptied folder must not pass by having none): empty when the rule holds, the failure
+// message when it does not.
+template <typename BreaksRule>
+std::vector<std::string> BreakingUnder(const std::string& folder, BreaksRule breaks,
+                                       size_t min_includes = 10) {
+  const std::vector<IncludeLine> includes = IncludesUnder(folder);
+  std::vector<std::string> out;
+  for (const IncludeLine& include : includes) {
+    if (breaks(include)) out.push_back(include.file + " includes " + include.header);
+  }
+  if (includes.size() < min_includes) {
+    out.push_back(folder + ": only " + std::to_string(includes.size()) + " includes found");
+  }
+  return out;
 }
 
 }  // namespace reenact::test_support

@@ -11,12 +11,10 @@ namespace {
 using testing::IsEmpty;
 
 TEST(CaptureDependencies, IncludesNothingOfTheViewerOrTheServer) {
-  const std::vector<IncludeLine> includes = IncludesUnder("capture-client");
-  ASSERT_GT(includes.size(), 10u);
-  EXPECT_THAT(Breaking(includes,
-                       [](const IncludeLine& i) {
-                         return StartsWithAnyOf(i.header, {"viewer-client/", "server/"});
-                       }),
+  EXPECT_THAT(BreakingUnder("capture-client",
+                            [](const IncludeLine& i) {
+                              return StartsWithAnyOf(i.header, {"viewer-client/", "server/"});
+                            }),
               IsEmpty());
 }
 
