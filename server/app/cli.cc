@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "server/app/open_file_limit.h"
 #include "server/auth/token.h"
 #include "server/http/http_server.h"
 #include "server/storage/open_storage.h"
@@ -19,7 +20,9 @@ namespace {
 constexpr const char* kUsage =
     "usage: reenact-server serve --db FILE [--listen HOST:PORT] [--threads N]\n"
     "                            [--max-connections N] [--rate-limit PER_S] [--rate-burst N]\n"
-    "                            [--header-timeout-s S]\n"
+    "                            [--header-timeout-s S] [--handler-threads N]\n"
+    "                            [--max-connections-per-address N] [--max-body-mb N]\n"
+    "                            [--min-transfer-rate BYTES_PER_S] [--min-rate-grace-s S]\n"
     "       reenact-server user add NAME --db FILE\n"
     "       reenact-server token add NAME --db FILE\n"
     "       reenact-server token revoke NAME --db FILE\n";
@@ -74,6 +77,15 @@ bool NumberFlag(const Args& args, const std::string& flag, double lo, double hi,
   return true;
 }
 
+// As NumberFlag, for a flag whose value must be a whole number.
+bool IntegerFlag(const Args& args, const std::string& flag, double lo, double hi, double& value,
+                 std::string& problem) {
+  if (!NumberFlag(args, flag, lo, hi, value, problem)) return false;
+  if (value == static_cast<double>(static_cast<long long>(value))) return true;
+  problem = flag + " wants a whole number, got '" + args.flags.at(flag) + "'";
+  return false;
+}
+
 int Serve(const Args& args, std::ostream& out, std::ostream& err) {
   if (!args.positional.empty()) return Usage(err, "unexpected argument " + args.positional[0]);
   auto db = args.flags.find("--db");
@@ -85,26 +97,37 @@ int Serve(const Args& args, std::ostream& out, std::ostream& err) {
     options.host = address->first;
     options.port = address->second;
   }
-  if (auto threads = args.flags.find("--threads"); threads != args.flags.end()) {
-    const std::string& t = threads->second;
-    int n = 0;
-    auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), n);
-    if (ec != std::errc() || end != t.data() + t.size() || n < 0 || n > 256) {
-      return Usage(err, "--threads wants an integer in [0, 256] (0 = one per hardware thread)");
-    }
-    options.threads = n;
-  }
+  double threads = options.threads, handler_threads = options.handler_threads;
   double max_connections = options.max_connections;
+  double per_address = options.max_connections_per_address;
+  double body_mb = static_cast<double>(options.max_body_memory >> 20);
   double header_timeout_s = std::chrono::duration<double>(options.idle_timeout).count();
+  double grace_s = std::chrono::duration<double>(options.min_transfer_rate.grace).count();
   std::string problem;
-  if (!NumberFlag(args, "--max-connections", 1, 1'000'000, max_connections, problem) ||
+  if (!IntegerFlag(args, "--threads", 0, 256, threads, problem) ||
+      !IntegerFlag(args, "--handler-threads", 0, 1024, handler_threads, problem) ||
+      !IntegerFlag(args, "--max-connections", 1, 1'000'000, max_connections, problem) ||
+      !IntegerFlag(args, "--max-connections-per-address", 0, 1'000'000, per_address, problem) ||
+      !IntegerFlag(args, "--max-body-mb", 64, 1'000'000, body_mb, problem) ||
+      !NumberFlag(args, "--min-transfer-rate", 0, 1e12, options.min_transfer_rate.bytes_per_s,
+                  problem) ||
+      !NumberFlag(args, "--min-rate-grace-s", 0, 3600, grace_s, problem) ||
       !NumberFlag(args, "--rate-limit", 0, 1e9, options.rate_limit.per_second, problem) ||
       !NumberFlag(args, "--rate-burst", 1, 1e9, options.rate_limit.burst, problem) ||
       !NumberFlag(args, "--header-timeout-s", 0.01, 3600, header_timeout_s, problem)) {
     return Usage(err, problem);
   }
+  options.threads = static_cast<int>(threads);
+  options.handler_threads = static_cast<int>(handler_threads);
   options.max_connections = static_cast<int>(max_connections);
+  options.max_connections_per_address = static_cast<int>(per_address);
+  options.max_body_memory = static_cast<size_t>(body_mb) << 20;
   options.idle_timeout = std::chrono::milliseconds(static_cast<int64_t>(header_timeout_s * 1000));
+  options.min_transfer_rate.grace = std::chrono::milliseconds(static_cast<int64_t>(grace_s * 1000));
+  if (Status limit = RaiseOpenFileLimit(options.max_connections); !limit) {
+    err << "reenact-server: " << limit.error().message << std::endl;
+    return 2;
+  }
   auto storage = OpenSqliteStorage(db->second);
   if (!storage) {
     err << "reenact-server: " << storage.error().message << std::endl;
@@ -190,8 +213,10 @@ int RunServerCli(int argc, const char* const* argv, std::ostream& out, std::ostr
   std::string problem;
   if (words[0] == "serve") {
     if (!ParseArgs({words.begin() + 1, words.end()},
-                   {"--db", "--listen", "--threads", "--max-connections", "--rate-limit",
-                    "--rate-burst", "--header-timeout-s"},
+                   {"--db", "--listen", "--threads", "--handler-threads", "--max-connections",
+                    "--max-connections-per-address", "--max-body-mb", "--min-transfer-rate",
+                    "--min-rate-grace-s",
+                    "--rate-limit", "--rate-burst", "--header-timeout-s"},
                    args, problem)) {
       return Usage(err, problem);
     }

@@ -33,6 +33,13 @@ std::variant<int, Response> PartIndex(const RouteMatch& match);
 std::string EncodeCursor(const NearbyQuery::Key& key);
 std::optional<NearbyQuery::Key> DecodeCursor(std::string_view cursor);
 
+// Checks made from a request's header alone, before its body is read (routes.h, Admit): the
+// refusal, or nullopt to read the body. head has no body; content_length is the declared one
+// (nullopt for a chunked body).
+std::optional<Response> AdmitCreateClip(const Request& head, ServiceContext& context);
+std::optional<Response> AdmitPutPart(const Request& head, std::optional<uint64_t> content_length,
+                                     ServiceContext& context, const RouteMatch& match);
+
 Response CreateClip(const Request& request, ServiceContext& context);
 Response PutPart(const Request& request, ServiceContext& context, const RouteMatch& match);
 Response Publish(const Request& request, ServiceContext& context, const RouteMatch& match);

@@ -1,13 +1,27 @@
 #pragma once
-// The asynchronous HTTP/1.1 server (Boost.Beast, after its async server example): a listener
-// and one session per connection, running Handle() (routes.h) for every request. Each thread
-// runs its own event loop; connections are dealt to the loops in turn and stay on theirs. Bodies are limited per route (BodyLimit) before they are read; every read
-// and write has a deadline. Stop() is graceful: no new connections, idle connections close,
-// requests in flight finish and are answered, then Run() returns.
-// Beyond max_connections, a new connection is answered 503 "unavailable" and closed. Requests
-// carrying a bearer token spend that token's rate-limit credit (rate_limiter.h); without
-// credit they are answered 429 "rate_limited" with Retry-After. Connections are kept alive
-// between requests unless the client asks otherwise.
+// The asynchronous HTTP/1.1 server (Boost.Beast, after its async server example): a listener,
+// network threads that each run an event loop of connections (session.h), and a pool of
+// handler threads that run the routes (routes.h) and read storage, so a slow handler never
+// delays accepting, reading or answering other connections.
+//
+// Defences against hostile and heavy clients, each bounded by an option below:
+//  - A request's header must arrive within idle_timeout, and once its first byte is in, at
+//    min_transfer_rate; bodies and responses likewise keep min_transfer_rate (and never run
+//    past transfer_timeout). A slow sender or reader is cut off within seconds.
+//  - Who may send a body is decided from the header, before it is read (routes.h, Admit):
+//    401/403/404/413/415/422 are answered and the connection closed without reading it.
+//  - Bodies are read only into memory reserved from max_body_memory (503 with Retry-After
+//    when it is full); downloads of stored payloads are streamed in 64 KiB pieces.
+//  - One address holds at most max_connections_per_address connections (503 beyond). At
+//    max_connections, the connection that has waited longest for a request header (idle or
+//    slow) is closed to make room; only when every connection is busy is a new one answered
+//    503.
+//  - Malformed requests are answered 400 (431 for an oversized header, 505 for an HTTP
+//    version other than 1.x) and closed (request_framing.h).
+// Requests carrying a bearer token spend that token's rate-limit credit (rate_limiter.h);
+// without credit they are answered 429 with Retry-After. Connections are kept alive between
+// requests unless the client asks otherwise. Stop() is graceful: no new connections, idle
+// connections close, requests in flight finish and are answered, then Run() returns.
 
 #include <chrono>
 #include <cstdint>
@@ -17,6 +31,7 @@
 #include "common/error/expected.h"
 #include "server/http/rate_limiter.h"
 #include "server/http/service_context.h"
+#include "server/http/transfer_deadline.h"
 
 namespace reenact::server {
 
@@ -25,16 +40,29 @@ struct ServerOptions {
   std::string host = "127.0.0.1";
   // TCP port; 0 = let the system pick a free one (Listen() returns it). Default 8080.
   uint16_t port = 8080;
-  // Threads, each running an event loop and its connections' handlers; >= 0, 0 = one per
-  // hardware thread (at least 2, since handlers block on the database). Default 0.
+  // Network threads, each running an event loop of connections; >= 0, 0 = one per hardware
+  // thread (at least 2). Default 0.
   int threads = 0;
-  // Connections served at once; >= 1. More are answered 503 and closed. Default 1024.
+  // Threads running route handlers and storage reads; >= 0, 0 = twice the hardware threads,
+  // at least 4 (handlers wait on the disk). Default 0.
+  int handler_threads = 0;
+  // Connections served at once; >= 1. At the cap, the connection longest idle or slowest to
+  // send its header is closed for a new one; when all are busy, new ones get 503. Default 1024.
   int max_connections = 1024;
+  // Connections one client address may hold at once; >= 0, 0 = no limit (behind a proxy,
+  // where every connection comes from the proxy's address). More get 503. Default 128.
+  int max_connections_per_address = 128;
+  // Memory all request bodies being received may hold together, bytes; at least the largest
+  // route limit (ServiceLimits). A body that does not fit is refused 503. Default 256 MiB.
+  size_t max_body_memory = size_t{256} << 20;
   // Per-token request rate limit; per_second 0 turns it off. Default 200/s, burst 400.
   RateLimitOptions rate_limit;
-  // How long a connection may sit without a complete request header; > 0. Default 30 s.
+  // How long a connection may wait for (and deliver) a request header; > 0. Default 30 s.
   std::chrono::milliseconds idle_timeout{30'000};
-  // Deadline to receive a request's body and to send its response; > 0. Default 120 s.
+  // Slowest average rate a header (from its first byte), a body or a response may move at
+  // after a grace; slower connections are closed. Default 1 KiB/s after 5 s.
+  MinRate min_transfer_rate{1024.0, std::chrono::milliseconds(5000)};
+  // Longest a body or a response may take whatever its rate; > 0. Default 120 s.
   std::chrono::milliseconds transfer_timeout{120'000};
   // After Stop(), how long in-flight requests may take before connections are cut; > 0.
   // Default 30 s.
@@ -43,6 +71,8 @@ struct ServerOptions {
   void Check() const;
   // threads with 0 resolved to the machine's hardware threads.
   int ResolvedThreads() const;
+  // handler_threads with 0 resolved.
+  int ResolvedHandlerThreads() const;
 };
 
 // "HOST:PORT" or "[V6]:PORT" into host and port; code "invalid_argument" otherwise.

@@ -2,6 +2,7 @@
 // Transport-free HTTP messages: what the route handlers consume and produce, so that routes
 // are pure functions testable without sockets (server/http/routes.h).
 
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -12,6 +13,8 @@
 #include "proto/api/http_headers.h"
 
 namespace reenact::server {
+
+class BlobReader;  // server/storage/blob_store.h
 
 using proto::EqualsIgnoreCase;
 
@@ -32,6 +35,9 @@ struct Response {
   std::string content_type = "application/json";  // empty: no Content-Type (204, 304)
   HeaderList headers;  // extra headers (ETag, Location, Allow, WWW-Authenticate, ...)
   std::string body;
+  // When set, the body is this stored payload instead, sent in pieces as the client takes
+  // them (a large download holds one piece in memory, never the whole payload).
+  std::shared_ptr<BlobReader> stream;
 };
 
 // {"error":{"code","message"}} with the given status.

@@ -1,5 +1,4 @@
 #include <cmath>
-#include <functional>
 #include <map>
 
 #include "proto/api/api_types.h"
@@ -58,9 +57,9 @@ bool MatchesEtag(const Request& request, const std::string& etag) {
   return false;
 }
 
-// 304 or the entity with its ETag.
-Response Entity(const Request& request, const std::string& sha256, std::string content_type,
-                const std::function<Expected<std::string>()>& load) {
+// The response to a GET of an entity with this SHA-256: 304 when the client holds it
+// (If-None-Match), else 200 with its ETag and no body yet.
+Response Validated(const Request& request, const std::string& sha256) {
   const std::string etag = "\"" + sha256 + "\"";
   Response response;
   response.headers.emplace_back("ETag", etag);
@@ -68,12 +67,7 @@ Response Entity(const Request& request, const std::string& sha256, std::string c
   if (MatchesEtag(request, etag)) {
     response.status = 304;
     response.content_type.clear();
-    return response;
   }
-  auto body = load();
-  if (!body) return StorageFailure(body.error());
-  response.content_type = std::move(content_type);
-  response.body = std::move(*body);
   return response;
 }
 
@@ -154,8 +148,12 @@ Response GetManifest(const Request& request, ServiceContext& context, const Rout
   auto clip = LoadVisibleClip(context, match.clip_id,
                               std::get<std::optional<UserRecord>>(viewer));
   if (auto* response = std::get_if<Response>(&clip)) return std::move(*response);
-  return Entity(request, std::get<ClipRecord>(clip).manifest_sha256, "application/json",
-                [&] { return context.metadata.GetManifest(match.clip_id); });
+  Response response = Validated(request, std::get<ClipRecord>(clip).manifest_sha256);
+  if (response.status == 304) return response;
+  auto manifest = context.metadata.GetManifest(match.clip_id);
+  if (!manifest) return StorageFailure(manifest.error());
+  response.body = std::move(*manifest);
+  return response;
 }
 
 Response GetPart(const Request& request, ServiceContext& context, const RouteMatch& match) {
@@ -177,14 +175,15 @@ Response GetPart(const Request& request, ServiceContext& context, const RouteMat
     return ErrorResponse(404, "not_found",
                          name + " of clip '" + match.clip_id + "' has not been uploaded yet");
   }
+  Response response = Validated(request, (*part)->spec.sha256);
+  if (response.status == 304) return response;
   const std::string key = BlobKey(match.clip_id, index);
-  return Entity(request, (*part)->spec.sha256, "application/octet-stream",
-                [&]() -> Expected<std::string> {
-                  auto blob = context.blobs.Get(key);
-                  if (!blob) return blob.error();
-                  if (!*blob) return MakeError("storage", "blob " + key + " is missing");
-                  return std::move(**blob);
-                });
+  auto reader = context.blobs.OpenReader(key);
+  if (!reader) return StorageFailure(reader.error());
+  if (!*reader) return StorageFailure(MakeError("storage", "blob " + key + " is missing"));
+  response.content_type = "application/octet-stream";
+  response.stream = std::move(*reader);
+  return response;
 }
 
 Response MyClips(const Request& request, ServiceContext& context, const RouteMatch& match) {

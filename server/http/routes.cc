@@ -70,6 +70,24 @@ Response Handle(const Request& request, ServiceContext& context) {
   }
 }
 
+std::optional<Response> Admit(const Request& head, std::optional<uint64_t> content_length,
+                              ServiceContext& context) {
+  const RouteMatch match = MatchRoute(head.target);
+  try {
+    if (head.method == "POST" && match.route == RouteId::kClips) {
+      return handlers::AdmitCreateClip(head, context);
+    }
+    if (head.method == "PUT" && (match.route == RouteId::kFrame || match.route == RouteId::kMap)) {
+      return handlers::AdmitPutPart(head, content_length, context, match);
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "reenact-server: internal error admitting " << head.method << " "
+              << match.pattern << ": " << e.what() << std::endl;
+    return ErrorResponse(500, "internal", "internal server error; the server log has details");
+  }
+  return std::nullopt;
+}
+
 std::string RouteLabel(std::string_view method, std::string_view target) {
   const RouteMatch match = MatchRoute(target);
   if (match.route == RouteId::kNone || !match.Allows(method)) return "unmatched";

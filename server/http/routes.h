@@ -7,6 +7,8 @@
 // Storage failures are logged to stderr; the response says only "internal".
 
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -17,6 +19,15 @@ namespace reenact::server {
 
 // Handles one request. Never throws for any request content.
 Response Handle(const Request& request, ServiceContext& context);
+
+// What can be decided from a request's header alone, before its body is read, so that no
+// body is read for a caller that may not send it: for POST /v1/clips the token and the
+// Content-Type; for PUT of a frame or the map also the clip's owner, the part and the declared
+// size against the manifest's. The refusal (401, 403, 404, 415, 422, 500), or nullopt when the
+// body should be read and the request handled. head.body is ignored; content_length is the
+// declared length (nullopt for a chunked body). Never throws.
+std::optional<Response> Admit(const Request& head, std::optional<uint64_t> content_length,
+                              ServiceContext& context);
 
 // The route pattern a request falls under, e.g. "PUT /v1/clips/{id}/frames/{n}", or
 // "unmatched": the label of metrics, never the raw path.

@@ -126,7 +126,18 @@ Response CreateClip(const Request& request, ServiceContext& context) {
   return response;
 }
 
-Response PutPart(const Request& request, ServiceContext& context, const RouteMatch& match) {
+namespace {
+
+// What a PUT of a part writes to, once the caller is known to own it.
+struct PartTarget {
+  int index = 0;
+  PartRecord part;
+};
+
+// The part a PUT names if the caller may write it with this Content-Type: 401, 403/404,
+// 400 for a malformed frame number, 415, 404 for a part the manifest does not promise.
+std::variant<PartTarget, Response> WritablePart(const Request& request, ServiceContext& context,
+                                                const RouteMatch& match) {
   auto user = RequireUser(request, context);
   if (auto* response = std::get_if<Response>(&user)) return std::move(*response);
   auto clip = LoadOwnedClip(context, match.clip_id, std::get<UserRecord>(user));
@@ -145,6 +156,39 @@ Response PutPart(const Request& request, ServiceContext& context, const RouteMat
                              std::to_string(std::get<ClipRecord>(clip).frame_count) +
                              " frames, numbered from 0)");
   }
+  return PartTarget{index, **part};
+}
+
+Response SizeMismatch(int index, uint64_t got, int64_t promised) {
+  return ErrorResponse(422, "size_mismatch",
+                       PartName(index) + " is " + std::to_string(got) +
+                           " bytes but the manifest says " + std::to_string(promised));
+}
+
+}  // namespace
+
+std::optional<Response> AdmitCreateClip(const Request& head, ServiceContext& context) {
+  auto user = RequireUser(head, context);
+  if (auto* response = std::get_if<Response>(&user)) return std::move(*response);
+  if (!HasMediaType(head, "application/json")) return WrongMediaType("application/json");
+  return std::nullopt;
+}
+
+std::optional<Response> AdmitPutPart(const Request& head, std::optional<uint64_t> content_length,
+                                     ServiceContext& context, const RouteMatch& match) {
+  auto target = WritablePart(head, context, match);
+  if (auto* response = std::get_if<Response>(&target)) return std::move(*response);
+  const PartTarget& part = std::get<PartTarget>(target);
+  if (content_length && static_cast<int64_t>(*content_length) != part.part.spec.bytes) {
+    return SizeMismatch(part.index, *content_length, part.part.spec.bytes);
+  }
+  return std::nullopt;
+}
+
+Response PutPart(const Request& request, ServiceContext& context, const RouteMatch& match) {
+  auto target = WritablePart(request, context, match);
+  if (auto* response = std::get_if<Response>(&target)) return std::move(*response);
+  const auto& [index, part] = std::get<PartTarget>(target);
   const size_t limit =
       index == kMapPart ? context.limits.max_map_bytes : context.limits.max_frame_bytes;
   if (request.body.size() > limit) {
@@ -152,11 +196,9 @@ Response PutPart(const Request& request, ServiceContext& context, const RouteMat
                          PartName(index) + " is " + std::to_string(request.body.size()) +
                              " bytes; the limit is " + std::to_string(limit));
   }
-  const PartSpec& spec = (*part)->spec;
+  const PartSpec& spec = part.spec;
   if (static_cast<int64_t>(request.body.size()) != spec.bytes) {
-    return ErrorResponse(422, "size_mismatch",
-                         PartName(index) + " is " + std::to_string(request.body.size()) +
-                             " bytes but the manifest says " + std::to_string(spec.bytes));
+    return SizeMismatch(index, request.body.size(), spec.bytes);
   }
   if (proto::Sha256Hex(request.body) != spec.sha256) {
     return ErrorResponse(422, "hash_mismatch",
@@ -172,7 +214,7 @@ Response PutPart(const Request& request, ServiceContext& context, const RouteMat
   if (Status s = context.blobs.Put(BlobKey(match.clip_id, index), request.body); !s) {
     return StorageFailure(s.error());
   }
-  if ((*part)->present) return done;
+  if (part.present) return done;
   if (Status s = context.metadata.MarkPartPresent(match.clip_id, index); !s) {
     return StorageFailure(s.error());
   }

@@ -3,7 +3,10 @@
 // "<clip id>/map" (BlobKey below). SqliteBlobStore keeps them in the server's database by
 // default; an S3-style object store can implement the same interface. Thread-safe.
 
+#include <cstdint>
+#include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -14,6 +17,18 @@ namespace reenact::server {
 // The key of a clip's part: index >= 0 is a frame, kMapPart (-1) the map.
 std::string BlobKey(const std::string& clip_id, int part_index);
 
+// One stored payload, read in pieces; one user at a time.
+class BlobReader {
+ public:
+  virtual ~BlobReader() = default;
+  // Payload bytes.
+  virtual uint64_t size() const = 0;
+  // Copies up to out.size() bytes starting at `offset` into out; returns how many (0 at or
+  // past the end). Code "storage" on a failure; code "changed" when the payload was replaced
+  // or deleted since OpenReader (the caller must start again).
+  virtual Expected<size_t> Read(uint64_t offset, std::span<char> out) = 0;
+};
+
 class BlobStore {
  public:
   virtual ~BlobStore() = default;
@@ -21,6 +36,8 @@ class BlobStore {
   virtual Status Put(const std::string& key, std::string_view bytes) = 0;
   // The payload, or nullopt when absent.
   virtual Expected<std::optional<std::string>> Get(const std::string& key) = 0;
+  // A reader of the payload under key, or null when absent.
+  virtual Expected<std::unique_ptr<BlobReader>> OpenReader(const std::string& key) = 0;
   // Removes every key starting with prefix.
   virtual Status DeletePrefix(const std::string& prefix) = 0;
 };

@@ -1,5 +1,7 @@
 #include "server/storage/sqlite_blob_store.h"
 
+#include <algorithm>
+
 namespace reenact::server {
 
 Expected<std::unique_ptr<SqliteBlobStore>> SqliteBlobStore::Open(const std::string& path) {
@@ -34,6 +36,30 @@ Expected<std::optional<std::string>> SqliteBlobStore::Get(const std::string& key
   if (!row) return row.error();
   if (!*row) return std::optional<std::string>();
   return std::optional<std::string>(stmt->ColumnBlob(0));
+}
+
+namespace {
+// PLACEHOLDER until the incremental reader lands.
+class WholeReader : public BlobReader {
+ public:
+  explicit WholeReader(std::string bytes) : bytes_(std::move(bytes)) {}
+  uint64_t size() const override { return bytes_.size(); }
+  Expected<size_t> Read(uint64_t offset, std::span<char> out) override {
+    if (offset >= bytes_.size()) return size_t{0};
+    const size_t n = std::min<size_t>(out.size(), bytes_.size() - offset);
+    std::copy_n(bytes_.data() + offset, n, out.data());
+    return n;
+  }
+ private:
+  std::string bytes_;
+};
+}  // namespace
+
+Expected<std::unique_ptr<BlobReader>> SqliteBlobStore::OpenReader(const std::string& key) {
+  auto blob = Get(key);
+  if (!blob) return blob.error();
+  if (!*blob) return std::unique_ptr<BlobReader>();
+  return std::unique_ptr<BlobReader>(new WholeReader(std::move(**blob)));
 }
 
 Status SqliteBlobStore::DeletePrefix(const std::string& prefix) {

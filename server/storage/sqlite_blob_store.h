@@ -20,6 +20,7 @@ class SqliteBlobStore : public BlobStore {
 
   Status Put(const std::string& key, std::string_view bytes) override;
   Expected<std::optional<std::string>> Get(const std::string& key) override;
+  Expected<std::unique_ptr<BlobReader>> OpenReader(const std::string& key) override;
   Status DeletePrefix(const std::string& prefix) override;
 
  private:

@@ -1,5 +1,6 @@
-// The server's protective limits on real sockets: per-token rate limits (429) and the cap on
-// concurrent connections (503), keep-alive.
+// The server's protective limits on real sockets: per-token rate limits (429), the cap on
+// concurrent connections (the longest-waiting idle connection makes room; 503 when all are
+// busy), the per-address cap, keep-alive.
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -19,8 +20,15 @@ namespace {
 // A raw loopback connection to write requests by hand and read what comes back.
 class RawConnection {
  public:
-  explicit RawConnection(uint16_t port) {
+  // from: the local address to connect from (any of 127.0.0.0/8 reaches the server).
+  explicit RawConnection(uint16_t port, const char* from = nullptr) {
     fd_ = socket(AF_INET, SOCK_STREAM, 0);
+    if (from) {
+      sockaddr_in local{};
+      local.sin_family = AF_INET;
+      inet_pton(AF_INET, from, &local.sin_addr);
+      (void)!bind(fd_, reinterpret_cast<sockaddr*>(&local), sizeof local);
+    }
     sockaddr_in addr{};
     addr.sin_family = AF_INET;
     addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
@@ -33,6 +41,11 @@ class RawConnection {
   bool connected() const { return connected_; }
   void Send(const std::string& bytes) { (void)!write(fd_, bytes.data(), bytes.size()); }
   // Reads until `needle` appears, the peer closes, or 5 s pass.
+  // True if the peer closed the connection (read returned 0 or an error) within 5 s.
+  bool PeerClosed() {
+    char c;
+    return read(fd_, &c, 1) <= 0;
+  }
   std::string ReadUntil(const std::string& needle) {
     std::string got;
     char buffer[4096];
@@ -111,35 +124,86 @@ TEST_F(ServerLimitsTest, RateLimitedUploadStoresNothing) {
   EXPECT_EQ(*storage_.metadata->CountClips(ClipState::kDraft), 1);
 }
 
-TEST_F(ServerLimitsTest, ConnectionsBeyondTheCapGet503AndServiceResumes) {
+constexpr const char* kHealth = "GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n";
+
+TEST_F(ServerLimitsTest, AtTheCapTheLongestIdleConnectionMakesRoomForANewOne) {
   ServerOptions options;
   options.max_connections = 2;
   Start(options);
   RawConnection a(port_), b(port_);
   ASSERT_TRUE(a.connected() && b.connected());
-  // Both held connections are served (keep-alive: two requests on one connection).
-  a.Send("GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n");
-  EXPECT_NE(a.ReadUntil("\r\n\r\n").find("200 OK"), std::string::npos);
-  b.Send("GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n");
-  EXPECT_NE(b.ReadUntil("\r\n\r\n").find("200 OK"), std::string::npos);
-  a.Send("GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n");
-  EXPECT_NE(a.ReadUntil("\r\n\r\n").find("200 OK"), std::string::npos);
+  // Both are served and then sit idle between requests; b has waited longest.
+  b.Send(kHealth);
+  EXPECT_NE(b.ReadUntil("\"ok\"}").find("200 OK"), std::string::npos);
+  a.Send(kHealth);
+  EXPECT_NE(a.ReadUntil("\"ok\"}").find("200 OK"), std::string::npos);
 
   RawConnection third(port_);
-  third.Send("GET /healthz HTTP/1.1\r\nHost: x\r\n\r\n");
+  third.Send(kHealth);
+  EXPECT_NE(third.ReadUntil("\"ok\"}").find("200 OK"), std::string::npos);
+  EXPECT_TRUE(b.PeerClosed()) << "the longest idle connection should have made room";
+  a.Send(kHealth);
+  EXPECT_NE(a.ReadUntil("\"ok\"}").find("200 OK"), std::string::npos) << "a was not idle longest";
+}
+
+TEST_F(ServerLimitsTest, WhenEveryConnectionIsBusyANewOneGets503AndServiceResumes) {
+  ServerOptions options;
+  options.max_connections = 2;
+  Start(options);
+  // Two uploads in progress: admitted, each with half its manifest body still to come.
+  const testing::TestClip clip = testing::MakeTestClip(1, 2, 1);
+  const std::string& body = clip.manifest_json;
+  const std::string head = "POST /v1/clips HTTP/1.1\r\nHost: x\r\nAuthorization: Bearer " +
+                           alice_ + "\r\nContent-Type: application/json\r\nContent-Length: " +
+                           std::to_string(body.size()) + "\r\n\r\n";
+  RawConnection a(port_), b(port_);
+  a.Send(head + body.substr(0, body.size() / 2));
+  b.Send(head + body.substr(0, body.size() / 2));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // both are reading bodies
+
+  RawConnection third(port_);
+  third.Send(kHealth);
   const std::string answer = third.ReadUntil("}}");
   EXPECT_NE(answer.find("503"), std::string::npos) << answer;
   EXPECT_NE(answer.find("\"code\":\"unavailable\""), std::string::npos) << answer;
 
-  // Once a held connection goes, a new one is served again.
-  a.Send("GET /healthz HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+  // The busy ones finish normally; afterwards a new connection is served again.
+  a.Send(body.substr(body.size() / 2));
+  EXPECT_NE(a.ReadUntil("}").find("201 Created"), std::string::npos);
+  b.Send(body.substr(body.size() / 2));
+  EXPECT_NE(b.ReadUntil("}").find("201 Created"), std::string::npos);
+  RawConnection fourth(port_);
+  fourth.Send(kHealth);
+  EXPECT_NE(fourth.ReadUntil("\"ok\"}").find("200 OK"), std::string::npos);
+}
+
+TEST_F(ServerLimitsTest, OneAddressHoldsAtMostItsShareWhileOthersAreServed) {
+  ServerOptions options;
+  options.max_connections_per_address = 2;
+  Start(options);
+  RawConnection a(port_, "127.0.0.1"), b(port_, "127.0.0.1");
+  a.Send(kHealth);
+  b.Send(kHealth);
   a.ReadUntil("\"ok\"}");
+  b.ReadUntil("\"ok\"}");
+  RawConnection third(port_, "127.0.0.1");
+  third.Send(kHealth);
+  const std::string refused = third.ReadUntil("}}");
+  EXPECT_NE(refused.find("503"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("this address holds 2 connections"), std::string::npos) << refused;
+  RawConnection other(port_, "127.0.0.2");
+  other.Send(kHealth);
+  EXPECT_NE(other.ReadUntil("\"ok\"}").find("200 OK"), std::string::npos);
+  // A closed connection gives its address's slot back.
+  a.Send("GET /healthz HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n");
+  EXPECT_TRUE(a.ReadUntil("\"ok\"}").find("200 OK") != std::string::npos);
   for (int attempt = 0; attempt < 100; ++attempt) {
-    auto r = proto::HttpClient(Url()).Send({"GET", "/healthz", {}, "", ""});
-    if (r.ok() && r->status == 200) return;
+    RawConnection again(port_, "127.0.0.1");
+    again.Send(kHealth);
+    if (again.ReadUntil("}").find("200 OK") != std::string::npos) return;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  ADD_FAILURE() << "no connection was served after one of the held ones closed";
+  ADD_FAILURE() << "the address's slot did not come back after one of its connections closed";
 }
 
 TEST(ServerOptions, ThreadsDefaultToTheMachineAndBadValuesAreRefused) {
@@ -149,6 +213,17 @@ TEST(ServerOptions, ThreadsDefaultToTheMachineAndBadValuesAreRefused) {
   EXPECT_GE(options.ResolvedThreads(), static_cast<int>(std::thread::hardware_concurrency()));
   options.max_connections = 0;
   EXPECT_ANY_THROW(options.Check());
+  options.max_connections = 1;
+  options.max_connections_per_address = -1;
+  EXPECT_ANY_THROW(options.Check());
+  options.max_connections_per_address = 0;
+  options.handler_threads = -1;
+  EXPECT_ANY_THROW(options.Check());
+  options.handler_threads = 0;
+  EXPECT_GE(options.ResolvedHandlerThreads(), 4);
+  options.min_transfer_rate.bytes_per_s = -1;
+  EXPECT_ANY_THROW(options.Check());
+  options.min_transfer_rate.bytes_per_s = 0;
   options.max_connections = 1;
   options.threads = -1;
   EXPECT_ANY_THROW(options.Check());

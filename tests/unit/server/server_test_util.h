@@ -13,6 +13,7 @@
 #include "proto/clip/manifest.h"
 #include "server/auth/token.h"
 #include "server/http/routes.h"
+#include "server/storage/blob_store.h"
 #include "server/storage/open_storage.h"
 #include "tests/support/temp_dir.h"
 
@@ -88,7 +89,25 @@ class ServiceFixture : public ::testing::Test {
     if (!token.empty()) request.headers.emplace_back("Authorization", "Bearer " + token);
     if (!content_type.empty()) request.headers.emplace_back("Content-Type", content_type);
     request.body = body;
-    return Handle(request, *context_);
+    return Received(Handle(request, *context_));
+  }
+
+  // The response as a client receives it: a streamed payload read into body.
+  static Response Received(Response response) {
+    if (!response.stream) return response;
+    std::string bytes(static_cast<size_t>(response.stream->size()), '\0');
+    uint64_t done = 0;
+    while (done < bytes.size()) {
+      auto n = response.stream->Read(done, std::span<char>(bytes.data() + done, bytes.size() - done));
+      if (!n.ok() || *n == 0) {
+        ADD_FAILURE() << "stream ended at " << done << " of " << bytes.size() << " bytes";
+        break;
+      }
+      done += *n;
+    }
+    response.body = std::move(bytes);
+    response.stream.reset();
+    return response;
   }
 
   // Creates the clip as `token`'s user and returns its id.
