@@ -39,9 +39,9 @@ bool HasHeader(const HeaderList& headers, std::string_view wanted) {
 }  // namespace
 
 std::optional<Response> FramingRefusal(unsigned version, const HeaderList& headers) {
-  if (version != 10 && version != 11) {
+  if (version / 10 != 1) {
     return ErrorResponse(505, "http_version_not_supported",
-                         "this server speaks HTTP/1.1 (and 1.0); got HTTP/" +
+                         "this server speaks HTTP/1.1; got HTTP/" +
                              std::to_string(version / 10) + "." + std::to_string(version % 10));
   }
   const std::vector<std::string> codings = TransferCodings(headers);

@@ -10,7 +10,7 @@
 namespace reenact::server {
 
 // The answer for a request whose framing this server refuses, or nullopt when it is fine:
-//  505 an HTTP version other than 1.0 and 1.1;
+//  505 an HTTP major version other than 1 (a higher 1.x minor is read as 1.1, RFC 9110 2.5);
 //  400 Transfer-Encoding beside Content-Length, or on an HTTP/1.0 request, or whose last
 //      coding is not chunked (e.g. "xchunked", "chunked, gzip");
 //  501 codings before chunked (e.g. "gzip, chunked"): only plain chunked is understood.

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -85,6 +86,7 @@ class ServerProcess {
 
   const std::string& url() const { return url_; }
   int port() const { return port_; }
+  int pid() const { return pid_; }
 
  private:
   int pid_ = -1;
@@ -96,8 +98,16 @@ class ServerProcess {
 // A blocking loopback TCP connection for hand-written (malformed, slow, truncated) requests.
 class RawSocket {
  public:
-  explicit RawSocket(int port, int receive_timeout_ms = 5000) {
+  // from: the local address to connect from (any of 127.0.0.0/8 reaches the server), so that
+  // a test can play several client addresses.
+  explicit RawSocket(int port, int receive_timeout_ms = 5000, const char* from = nullptr) {
     fd_ = socket(AF_INET, SOCK_STREAM, 0);
+    if (from) {
+      sockaddr_in local{};
+      local.sin_family = AF_INET;
+      inet_pton(AF_INET, from, &local.sin_addr);
+      (void)!bind(fd_, reinterpret_cast<sockaddr*>(&local), sizeof local);
+    }
     sockaddr_in addr{};
     addr.sin_family = AF_INET;
     addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
@@ -105,6 +115,7 @@ class RawSocket {
     connected_ = connect(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0;
     timeval tv{receive_timeout_ms / 1000, (receive_timeout_ms % 1000) * 1000};
     setsockopt(fd_, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+    setsockopt(fd_, SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof tv);
   }
   ~RawSocket() { Close(); }
   RawSocket(const RawSocket&) = delete;
@@ -133,15 +144,40 @@ class RawSocket {
     const ssize_t n = recv(fd_, &c, 1, 0);
     return n == 0 || (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK);
   }
+  // Reads until `needle` appears, the peer closes, or the receive timeout passes.
+  std::string ReadUntil(const std::string& needle) {
+    std::string got;
+    char buffer[4096];
+    while (got.find(needle) == std::string::npos) {
+      const ssize_t n = recv(fd_, buffer, sizeof buffer, 0);
+      if (n <= 0) break;
+      got.append(buffer, static_cast<size_t>(n));
+    }
+    return got;
+  }
   void Close() {
     if (fd_ >= 0) close(fd_);
     fd_ = -1;
   }
+  int fd() const { return fd_; }
 
  private:
   int fd_ = -1;
   bool connected_ = false;
 };
+
+// The resident memory of process `pid` in MiB (VmRSS of /proc/PID/status); -1 if unreadable.
+inline double ResidentMiB(int pid) {
+  FILE* file = std::fopen(("/proc/" + std::to_string(pid) + "/status").c_str(), "r");
+  if (!file) return -1;
+  char line[256];
+  double kib = -1;
+  while (std::fgets(line, sizeof line, file)) {
+    if (std::sscanf(line, "VmRSS: %lf kB", &kib) == 1) break;
+  }
+  std::fclose(file);
+  return kib < 0 ? -1 : kib / 1024.0;
+}
 
 // "ok" from PRAGMA integrity_check, or the first problem it reports.
 inline std::string IntegrityCheck(const std::string& db_path) {

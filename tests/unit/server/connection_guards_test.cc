@@ -133,6 +133,7 @@ TEST(RequestFraming, CodingsBeforeChunkedAre501AndOtherVersions505) {
   EXPECT_EQ(StatusOf(FramingRefusal(11, With({{"Transfer-Encoding", "gzip, chunked"}}))), 501);
   EXPECT_EQ(StatusOf(FramingRefusal(20, With({}))), 505);
   EXPECT_EQ(StatusOf(FramingRefusal(9, With({}))), 505);
+  EXPECT_FALSE(FramingRefusal(12, With({})));  // a later 1.x minor is read as 1.1
 }
 
 TEST(RequestFraming, ParserFailuresAre431ForHugeHeadersAnd400Otherwise) {
