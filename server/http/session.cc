@@ -138,11 +138,12 @@ void Session::NextRequest() {
   header_seen_ = false;
   reading_body_ = false;
   transferred_ = 0;
+  route_.clear();
   request_wait_start_ = Clock::now();
   if (buffer_.size() == 0 && buffer_.capacity() > kHeaderReadBytes) buffer_.shrink_to_fit();
   if (buffer_.size() > 0) {  // a pipelined request is already here
     header_seen_ = true;
-    transfer_start_ = request_wait_start_;
+    transfer_start_ = started_ = request_wait_start_;
     SetPhase(Phase::kHeader);
     return Parse();
   }
@@ -178,7 +179,7 @@ void Session::OnRead(beast::error_code ec, size_t bytes) {
   transferred_ += bytes;
   if (!header_seen_) {
     header_seen_ = true;
-    transfer_start_ = Clock::now();
+    transfer_start_ = started_ = Clock::now();
     transferred_ = bytes;
     SetPhase(Phase::kHeader);
   }
@@ -203,7 +204,6 @@ void Session::Parse() {
 
 void Session::OnHeader() {
   SetPhase(Phase::kBusy);
-  started_ = Clock::now();
   bytes_in_ = bytes_out_ = 0;
   close_after_reply_ = false;
   const auto& header = parser_->get();
