@@ -4,8 +4,9 @@
 
 namespace reenact::server {
 
-Expected<std::unique_ptr<SqliteBlobStore>> SqliteBlobStore::Open(const std::string& path) {
-  auto db = sqlite::Database::Open(path);
+Expected<std::unique_ptr<SqliteBlobStore>> SqliteBlobStore::Open(const std::string& path,
+                                                                 sqlite::Sync sync) {
+  auto db = sqlite::Database::Open(path, sync);
   if (!db) return db.error();
   auto probe = db->Prepare("SELECT 1 FROM blobs LIMIT 0");
   if (!probe) {

@@ -16,7 +16,9 @@ namespace reenact::server {
 
 class SqliteBlobStore : public BlobStore {
  public:
-  static Expected<std::unique_ptr<SqliteBlobStore>> Open(const std::string& path);
+  // Opens the blob store of the database at path; every connection commits as `sync` says.
+  static Expected<std::unique_ptr<SqliteBlobStore>> Open(const std::string& path,
+                                                         sqlite::Sync sync = sqlite::Sync::kFull);
 
   Status Put(const std::string& key, std::string_view bytes) override;
   Expected<std::optional<std::string>> Get(const std::string& key) override;

@@ -64,8 +64,9 @@ bool IsConstraintError(const Error& error) {
 
 }  // namespace
 
-Expected<std::unique_ptr<SqliteMetadataStore>> SqliteMetadataStore::Open(const std::string& path) {
-  auto db = sqlite::Database::Open(path);
+Expected<std::unique_ptr<SqliteMetadataStore>> SqliteMetadataStore::Open(const std::string& path,
+                                                                         sqlite::Sync sync) {
+  auto db = sqlite::Database::Open(path, sync);
   if (!db) return db.error();
   if (Status s = ApplyMigrations(*db, EmbeddedMigrations()); !s) return s.error();
   auto checkpointer = sqlite::WalCheckpointer::ForFile(path);
@@ -75,7 +76,7 @@ Expected<std::unique_ptr<SqliteMetadataStore>> SqliteMetadataStore::Open(const s
   store->checkpointer_ = std::move(*checkpointer);
   const unsigned readers = std::max(2u, std::thread::hardware_concurrency());
   for (unsigned i = 0; i < readers; ++i) {
-    auto reader = sqlite::Database::Open(path);
+    auto reader = sqlite::Database::Open(path, sync);
     if (!reader) return reader.error();
     // Readers see the file through a shared read-only mapping: a query touches pages of
     // the R*Tree and of clips scattered over the file, and a page from the map costs no

@@ -20,8 +20,10 @@ namespace reenact::server {
 
 class SqliteMetadataStore : public MetadataStore {
  public:
-  // Opens (creating if needed) the database at path and applies pending migrations.
-  static Expected<std::unique_ptr<SqliteMetadataStore>> Open(const std::string& path);
+  // Opens (creating if needed) the database at path and applies pending migrations. Every
+  // connection commits as `sync` says.
+  static Expected<std::unique_ptr<SqliteMetadataStore>> Open(
+      const std::string& path, sqlite::Sync sync = sqlite::Sync::kFull);
 
   Expected<UserRecord> AddUser(const std::string& name, const std::string& token_sha256) override;
   Expected<std::optional<TokenOwner>> FindUserByTokenHash(
