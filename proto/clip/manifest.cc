@@ -6,6 +6,7 @@
 
 #include "proto/clip/content_hash.h"
 #include "proto/clip/json_fields.h"
+#include "proto/clip/json_unique_keys.h"
 
 namespace reenact::proto {
 namespace {
@@ -295,6 +296,12 @@ Expected<ClipManifest> ParseManifest(std::string_view text) {
   const json document = json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (document.is_discarded())
     return MakeError("invalid_argument", "manifest: not valid JSON (or not UTF-8)");
+  if (const auto duplicate = FirstDuplicateKey(text)) {
+    return MakeError("invalid_argument",
+                     "manifest: key " + *duplicate +
+                         " appears more than once in the same object; keys in a JSON object "
+                         "must be unique");
+  }
   try {
     return ManifestFromJson(document);
   } catch (const JsonFieldError& e) {

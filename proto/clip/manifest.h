@@ -27,8 +27,9 @@
 //   }
 //
 // ParseManifest validates everything and fails with Error{code, message}:
-//   code "invalid_argument": malformed JSON, a missing field, a wrong type, a value out of
-//                            range, a skeleton definition that differs from skeleton.h;
+//   code "invalid_argument": malformed JSON, a key repeated within one object (at any depth),
+//                            a missing field, a wrong type, a value out of range, a skeleton
+//                            definition that differs from skeleton.h;
 //   code "unsupported":      a format_version this build does not know.
 // Messages name the field: "manifest: location.lat_deg = 95 is outside [-90, 90]".
 

@@ -1,3 +1,6 @@
+#include <algorithm>
+#include <vector>
+
 #include "proto/api/api_types.h"
 #include "proto/clip/content_hash.h"
 #include "server/http/handlers.h"
@@ -6,16 +9,41 @@ namespace reenact::server::handlers {
 
 namespace {
 
+// Bytes read and hashed at a time: a part's hash costs at most this much memory.
+constexpr uint64_t kHashChunkBytes = uint64_t{1} << 20;
+
+// The size and SHA-256 of the payload under key, read in pieces; nullopt when absent. Code
+// "changed" when the payload was replaced or deleted while being read.
+Expected<std::optional<proto::HeldBytes>> HashBlob(BlobStore& blobs, const std::string& key) {
+  auto reader = blobs.OpenReader(key);
+  if (!reader) return reader.error();
+  if (!*reader) return std::optional<proto::HeldBytes>();
+  const uint64_t size = (*reader)->size();
+  std::vector<char> buffer(std::max<uint64_t>(1, std::min(size, kHashChunkBytes)));
+  proto::Sha256Hasher hasher;
+  for (uint64_t offset = 0; offset < size;) {
+    auto n = (*reader)->Read(offset, buffer);
+    if (!n) return n.error();
+    if (*n == 0) {
+      return MakeError("storage", "blob " + key + " ended after " + std::to_string(offset) +
+                                      " of its " + std::to_string(size) + " bytes");
+    }
+    hasher.Update(std::string_view(buffer.data(), *n));
+    offset += *n;
+  }
+  return std::optional<proto::HeldBytes>(proto::HeldBytes{size, hasher.FinalHex()});
+}
+
 // What the blob store holds for a part the metadata marks present: its size and fresh
 // SHA-256, or nullopt when the part is not marked present or its blob is missing.
 Expected<std::optional<proto::HeldBytes>> Held(ServiceContext& context, const std::string& clip_id,
                                                const PartRecord& part) {
   if (!part.present) return std::optional<proto::HeldBytes>();
-  auto blob = context.blobs.Get(BlobKey(clip_id, part.spec.index));
-  if (!blob) return blob.error();
-  if (!*blob) return std::optional<proto::HeldBytes>();
-  return std::optional<proto::HeldBytes>(
-      proto::HeldBytes{(*blob)->size(), proto::Sha256Hex(**blob)});
+  const std::string key = BlobKey(clip_id, part.spec.index);
+  auto held = HashBlob(context.blobs, key);
+  // Replaced (an upload of the part again) while being hashed: hash what is there now.
+  if (!held && held.error().code == "changed") held = HashBlob(context.blobs, key);
+  return held;
 }
 
 }  // namespace

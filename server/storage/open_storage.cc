@@ -5,10 +5,12 @@
 
 namespace reenact::server {
 
-Expected<Storage> OpenSqliteStorage(const std::string& db_path) {
-  auto metadata = SqliteMetadataStore::Open(db_path);
+Expected<Storage> OpenSqliteStorage(const std::string& db_path, const StorageOptions& options) {
+  const sqlite::Sync sync =
+      options.fsync_each_commit ? sqlite::Sync::kFull : sqlite::Sync::kNormal;
+  auto metadata = SqliteMetadataStore::Open(db_path, sync);
   if (!metadata) return metadata.error();
-  auto blobs = SqliteBlobStore::Open(db_path);
+  auto blobs = SqliteBlobStore::Open(db_path, sync);
   if (!blobs) return blobs.error();
   return Storage{std::move(*metadata), std::move(*blobs)};
 }

@@ -1,7 +1,12 @@
 #include "server/storage/sqlite.h"
 
+#include <fcntl.h>
 #include <sqlite3.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <utility>
 
@@ -13,9 +18,28 @@ Error StorageError(std::string_view what, std::string_view detail) {
   return MakeError("storage", std::string(what) + ": " + std::string(detail));
 }
 
+// Creates `path` empty with mode 0600 unless it exists. SQLite creates the -wal and -shm
+// files with the mode of the database file, so they are private too.
+Status CreatePrivateFile(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_CREAT | O_EXCL | O_RDWR | O_CLOEXEC, 0600);
+  if (fd < 0) {
+    if (errno == EEXIST) return {};  // exists already (or another process just created it)
+    return MakeError("io", "cannot create database " + path + ": " + std::strerror(errno));
+  }
+  // open() applied the umask; a umask that removes owner bits must not lock the owner out.
+  if (::fchmod(fd, 0600) != 0) {
+    const int error = errno;
+    ::close(fd);
+    return MakeError("io", "cannot set mode 0600 on database " + path + ": " +
+                               std::strerror(error));
+  }
+  ::close(fd);
+  return {};
+}
+
 }  // namespace
 
-Expected<Database> Database::Open(const std::string& path, int busy_timeout_ms) {
+Expected<Database> Database::Open(const std::string& path, Sync sync, int busy_timeout_ms) {
   REENACT_CHECK(busy_timeout_ms >= 0, "busy timeout must be >= 0");
   const std::filesystem::path file(path);
   const std::filesystem::path dir = file.has_parent_path() ? file.parent_path() : ".";
@@ -24,6 +48,7 @@ Expected<Database> Database::Open(const std::string& path, int busy_timeout_ms) 
     return MakeError("io", "cannot open database " + path + ": directory " + dir.string() +
                                " does not exist; create it first");
   }
+  if (Status s = CreatePrivateFile(path); !s) return s.error();
   sqlite3* db = nullptr;
   const int rc = sqlite3_open_v2(path.c_str(), &db,
                                  SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE |
@@ -37,8 +62,10 @@ Expected<Database> Database::Open(const std::string& path, int busy_timeout_ms) 
   Database database(db, path);
   sqlite3_busy_timeout(db, busy_timeout_ms);
   sqlite3_extended_result_codes(db, 1);
+  const char* synchronous =
+      sync == Sync::kFull ? "PRAGMA synchronous = FULL" : "PRAGMA synchronous = NORMAL";
   for (const char* pragma : {"PRAGMA journal_mode = WAL", "PRAGMA foreign_keys = ON",
-                             "PRAGMA synchronous = NORMAL"}) {
+                             synchronous}) {
     auto stmt = database.Prepare(pragma);
     if (!stmt) return MakeError("io", "cannot open database " + path + ": " + stmt.error().message);
     for (;;) {

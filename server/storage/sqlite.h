@@ -18,12 +18,26 @@ namespace reenact::server::sqlite {
 
 class Statement;
 
+// When a connection's commits reach the disk (its PRAGMA synchronous, in WAL mode).
+enum class Sync {
+  // synchronous=FULL: every commit fsyncs the WAL before it returns, so a committed
+  // transaction survives a power failure.
+  kFull,
+  // synchronous=NORMAL: the WAL is synced only at checkpoints; a committed transaction
+  // survives a crash of the process, but the last ones can be lost on power failure.
+  kNormal,
+};
+
 // One connection. Open() turns on WAL journaling, foreign keys and a busy timeout.
 class Database {
  public:
-  // Opens (creating if needed) the file at `path`. A path whose directory does not exist is
-  // an error naming the directory. busy_timeout_ms: how long a writer waits for a lock.
-  static Expected<Database> Open(const std::string& path, int busy_timeout_ms = 5000);
+  // Opens (creating if needed) the file at `path`. A file it creates has mode 0600 (owner
+  // read/write) whatever the umask, and so have the -wal and -shm files SQLite creates
+  // beside it; an existing file keeps its mode. A path whose directory does not exist is an
+  // error naming the directory. sync: see Sync. busy_timeout_ms: how long a writer waits for
+  // a lock.
+  static Expected<Database> Open(const std::string& path, Sync sync = Sync::kFull,
+                                 int busy_timeout_ms = 5000);
 
   Database(Database&& other) noexcept;
   Database& operator=(Database&& other) noexcept;

@@ -1,11 +1,12 @@
 #include "server/storage/sqlite_blob_store.h"
 
-#include <algorithm>
+#include "server/storage/sqlite_blob_reader.h"
 
 namespace reenact::server {
 
-Expected<std::unique_ptr<SqliteBlobStore>> SqliteBlobStore::Open(const std::string& path) {
-  auto db = sqlite::Database::Open(path);
+Expected<std::unique_ptr<SqliteBlobStore>> SqliteBlobStore::Open(const std::string& path,
+                                                                 sqlite::Sync sync) {
+  auto db = sqlite::Database::Open(path, sync);
   if (!db) return db.error();
   auto probe = db->Prepare("SELECT 1 FROM blobs LIMIT 0");
   if (!probe) {
@@ -14,52 +15,36 @@ Expected<std::unique_ptr<SqliteBlobStore>> SqliteBlobStore::Open(const std::stri
   auto checkpointer = sqlite::WalCheckpointer::ForFile(path);
   if (!checkpointer) return checkpointer.error();
   (*checkpointer)->Attach(*db);
+  auto readers = sqlite::ReaderPool::Open(path, sqlite::ReaderPool::DefaultCount(), sync);
+  if (!readers) return readers.error();
   return std::unique_ptr<SqliteBlobStore>(
-      new SqliteBlobStore(std::move(*checkpointer), std::move(*db)));
+      new SqliteBlobStore(std::move(*checkpointer), std::move(*db),
+                          std::shared_ptr<sqlite::ReaderPool>(std::move(*readers))));
 }
 
 Status SqliteBlobStore::Put(const std::string& key, std::string_view bytes) {
   std::lock_guard lock(mutex_);
-  auto stmt = db_.Prepare("INSERT INTO blobs(key, data) VALUES (?1, ?2) "
-                          "ON CONFLICT(key) DO UPDATE SET data = excluded.data");
+  auto stmt = db_.Prepare(
+      "INSERT INTO blobs(key, data) VALUES (?1, ?2) "
+      "ON CONFLICT(key) DO UPDATE SET data = excluded.data");
   if (!stmt) return stmt.error();
   stmt->BindText(1, key).BindBlobInPlace(2, bytes);  // `bytes` outlives the statement
   return stmt->Run();
 }
 
 Expected<std::optional<std::string>> SqliteBlobStore::Get(const std::string& key) {
-  std::lock_guard lock(mutex_);
-  auto stmt = db_.Prepare("SELECT data FROM blobs WHERE key = ?1");
+  auto lease = readers_->Acquire();  // its end resets the statement: no read stays open
+  auto stmt = lease.Prepared("SELECT data FROM blobs WHERE key = ?1");
   if (!stmt) return stmt.error();
-  stmt->BindText(1, key);
-  auto row = stmt->Step();
+  (*stmt)->BindText(1, key);
+  auto row = (*stmt)->Step();
   if (!row) return row.error();
   if (!*row) return std::optional<std::string>();
-  return std::optional<std::string>(stmt->ColumnBlob(0));
+  return std::optional<std::string>((*stmt)->ColumnBlob(0));
 }
 
-namespace {
-// PLACEHOLDER until the incremental reader lands.
-class WholeReader : public BlobReader {
- public:
-  explicit WholeReader(std::string bytes) : bytes_(std::move(bytes)) {}
-  uint64_t size() const override { return bytes_.size(); }
-  Expected<size_t> Read(uint64_t offset, std::span<char> out) override {
-    if (offset >= bytes_.size()) return size_t{0};
-    const size_t n = std::min<size_t>(out.size(), bytes_.size() - offset);
-    std::copy_n(bytes_.data() + offset, n, out.data());
-    return n;
-  }
- private:
-  std::string bytes_;
-};
-}  // namespace
-
 Expected<std::unique_ptr<BlobReader>> SqliteBlobStore::OpenReader(const std::string& key) {
-  auto blob = Get(key);
-  if (!blob) return blob.error();
-  if (!*blob) return std::unique_ptr<BlobReader>();
-  return std::unique_ptr<BlobReader>(new WholeReader(std::move(**blob)));
+  return SqliteBlobReader::Open(readers_, key);
 }
 
 Status SqliteBlobStore::DeletePrefix(const std::string& prefix) {

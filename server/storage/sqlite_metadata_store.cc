@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <ctime>
 #include <set>
-#include <thread>
 #include <tuple>
 
 #include "server/geo/geodesic.h"
@@ -12,8 +11,6 @@
 namespace reenact::server {
 
 namespace {
-
-constexpr long long kReaderMmapBytes = 1LL << 30;
 
 constexpr const char* kClipColumns =
     "c.public_id, c.owner_id, c.state, c.title, c.author, c.lat_deg, c.lon_deg, c.alt_m, "
@@ -64,8 +61,9 @@ bool IsConstraintError(const Error& error) {
 
 }  // namespace
 
-Expected<std::unique_ptr<SqliteMetadataStore>> SqliteMetadataStore::Open(const std::string& path) {
-  auto db = sqlite::Database::Open(path);
+Expected<std::unique_ptr<SqliteMetadataStore>> SqliteMetadataStore::Open(const std::string& path,
+                                                                         sqlite::Sync sync) {
+  auto db = sqlite::Database::Open(path, sync);
   if (!db) return db.error();
   if (Status s = ApplyMigrations(*db, EmbeddedMigrations()); !s) return s.error();
   auto checkpointer = sqlite::WalCheckpointer::ForFile(path);
@@ -73,19 +71,9 @@ Expected<std::unique_ptr<SqliteMetadataStore>> SqliteMetadataStore::Open(const s
   (*checkpointer)->Attach(*db);
   std::unique_ptr<SqliteMetadataStore> store(new SqliteMetadataStore(std::move(*db)));
   store->checkpointer_ = std::move(*checkpointer);
-  const unsigned readers = std::max(2u, std::thread::hardware_concurrency());
-  for (unsigned i = 0; i < readers; ++i) {
-    auto reader = sqlite::Database::Open(path);
-    if (!reader) return reader.error();
-    // Readers see the file through a shared read-only mapping: a query touches pages of
-    // the R*Tree and of clips scattered over the file, and a page from the map costs no
-    // pread (SQLite's own cache per connection is 2 MB, a small part of 10^6 clips).
-    if (Status s = reader->Exec("PRAGMA query_only = ON"); !s) return s.error();
-    if (Status s = reader->Exec("PRAGMA mmap_size = " + std::to_string(kReaderMmapBytes)); !s) {
-      return s.error();
-    }
-    store->readers_.push_back(std::make_unique<Reader>(std::move(*reader)));
-  }
+  auto readers = sqlite::ReaderPool::Open(path, sqlite::ReaderPool::DefaultCount(), sync);
+  if (!readers) return readers.error();
+  store->readers_ = std::move(*readers);
   return store;
 }
 
@@ -348,37 +336,18 @@ Expected<std::vector<NearbyHit>> SqliteMetadataStore::Nearby(const NearbyQuery& 
   REENACT_CHECK(query.limit >= 1, "nearby limit must be >= 1");
   REENACT_CHECK(query.radius_m >= 0.0 && query.radius_m <= kMaxNearbyRadiusM,
                 "nearby radius out of range");
-  // A free reader if there is one, else wait for the next in turn.
-  const unsigned first = next_reader_.fetch_add(1, std::memory_order_relaxed);
-  std::unique_lock<std::mutex> lock;
-  Reader* reader = nullptr;
-  for (size_t i = 0; i < readers_.size() && !reader; ++i) {
-    Reader& r = *readers_[(first + i) % readers_.size()];
-    lock = std::unique_lock(r.mutex, std::try_to_lock);
-    if (lock.owns_lock()) reader = &r;
-  }
-  if (!reader) {
-    reader = readers_[first % readers_.size()].get();
-    lock = std::unique_lock(reader->mutex);
-  }
-  if (!reader->nearby) {
-    // CROSS JOIN pins the R*Tree as the outer loop: otherwise SQLite may walk every
-    // published clip through clips_by_state and probe the tree per row (linear in the
-    // clip count).
-    auto prepared =
-        reader->db.Prepare(std::string("SELECT ") + kClipColumns +
-                           " FROM clip_boxes b CROSS JOIN clips c ON c.rowid_key = b.id "
-                           "WHERE b.max_lat >= ?1 AND b.min_lat <= ?2 AND b.max_lon >= ?3 "
-                           "AND b.min_lon <= ?4 AND c.state = 'published'");
-    if (!prepared) return prepared.error();
-    reader->nearby.emplace(std::move(*prepared));
-  }
-  sqlite::Statement* stmt = &*reader->nearby;
-  // Ends the read transaction however this returns, so the reader pins no WAL frames.
-  struct ResetOnExit {
-    sqlite::Statement* stmt;
-    ~ResetOnExit() { stmt->Reset(); }
-  } reset_on_exit{stmt};
+  // CROSS JOIN pins the R*Tree as the outer loop: otherwise SQLite may walk every published
+  // clip through clips_by_state and probe the tree per row (linear in the clip count).
+  static const std::string kNearbySql =
+      std::string("SELECT ") + kClipColumns +
+      " FROM clip_boxes b CROSS JOIN clips c ON c.rowid_key = b.id "
+      "WHERE b.max_lat >= ?1 AND b.min_lat <= ?2 AND b.max_lon >= ?3 "
+      "AND b.min_lon <= ?4 AND c.state = 'published'";
+  // The lease resets the statement however this returns, ending the read transaction.
+  sqlite::ReaderPool::Lease reader = readers_->Acquire();
+  auto prepared = reader.Prepared(kNearbySql);
+  if (!prepared) return prepared.error();
+  sqlite::Statement* stmt = *prepared;
   std::vector<NearbyHit> hits;
   // Boxes overlap only when a query spans the antimeridian or a pole: then a clip can come
   // back twice, and only then are ids remembered.

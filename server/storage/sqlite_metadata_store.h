@@ -3,9 +3,8 @@
 // clip_boxes R*Tree over the query's covering boxes (server/geo/geodesic.h), then filters and
 // sorts by exact haversine distance. Writes and most reads go through one connection guarded
 // by a mutex; nearby searches, the hot read path, run on a pool of read-only connections
-// (WAL lets them read committed data concurrently), one per hardware thread.
+// (sqlite::ReaderPool; WAL lets them read committed data concurrently).
 
-#include <atomic>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -13,6 +12,7 @@
 #include <vector>
 
 #include "server/storage/metadata_store.h"
+#include "server/storage/reader_pool.h"
 #include "server/storage/sqlite.h"
 #include "server/storage/wal_checkpointer.h"
 
@@ -20,8 +20,10 @@ namespace reenact::server {
 
 class SqliteMetadataStore : public MetadataStore {
  public:
-  // Opens (creating if needed) the database at path and applies pending migrations.
-  static Expected<std::unique_ptr<SqliteMetadataStore>> Open(const std::string& path);
+  // Opens (creating if needed) the database at path and applies pending migrations. Every
+  // connection commits as `sync` says.
+  static Expected<std::unique_ptr<SqliteMetadataStore>> Open(
+      const std::string& path, sqlite::Sync sync = sqlite::Sync::kFull);
 
   Expected<UserRecord> AddUser(const std::string& name, const std::string& token_sha256) override;
   Expected<std::optional<TokenOwner>> FindUserByTokenHash(
@@ -43,20 +45,12 @@ class SqliteMetadataStore : public MetadataStore {
   Expected<int64_t> CountClips(ClipState state) override;
 
  private:
-  struct Reader {
-    explicit Reader(sqlite::Database database) : db(std::move(database)) {}
-    std::mutex mutex;
-    sqlite::Database db;
-    std::optional<sqlite::Statement> nearby;  // compiled on first use, then reused
-  };
-
   explicit SqliteMetadataStore(sqlite::Database db) : db_(std::move(db)) {}
 
   std::mutex mutex_;
   std::shared_ptr<sqlite::WalCheckpointer> checkpointer_;  // outlives db_
   sqlite::Database db_;
-  std::vector<std::unique_ptr<Reader>> readers_;  // empty: reads use db_
-  std::atomic<unsigned> next_reader_{0};
+  std::unique_ptr<sqlite::ReaderPool> readers_;  // for Nearby
 };
 
 }  // namespace reenact::server

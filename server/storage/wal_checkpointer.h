@@ -1,14 +1,15 @@
 #pragma once
 // Background WAL checkpoints for one SQLite database file.
 //
-// In WAL mode with synchronous=NORMAL a commit appends pages to the -wal file and does not
-// sync; the checkpoint (copy the WAL back into the database file) is where SQLite syncs, twice
-// (the WAL, then the database). By default every connection runs that checkpoint itself after
-// any commit that leaves the WAL above 1000 pages, on the request thread, holding its store's
-// mutex through both fsyncs. A WalCheckpointer takes the job over: the writing connections
-// attached to it only report the WAL's size after each commit; a thread with its own
-// connection runs the checkpoints. Durability is unchanged: committed transactions are in the
-// WAL, which SQLite replays after a crash or kill -9 whether or not it was checkpointed.
+// In WAL mode a commit appends pages to the -wal file (and fsyncs it with synchronous=FULL,
+// Database::Open's default; with NORMAL it does not); the checkpoint (copy the WAL back into the
+// database file) is where SQLite syncs the database file, after the WAL. By default every
+// connection runs that checkpoint itself after any commit that leaves the WAL above 1000 pages, on
+// the request thread, holding its store's mutex through both fsyncs. A WalCheckpointer takes the
+// job over: the writing connections attached to it only report the WAL's size after each commit; a
+// thread with its own connection runs the checkpoints. Durability is unchanged: committed
+// transactions are in the WAL, which SQLite replays after a crash or kill -9 whether or not it was
+// checkpointed.
 //
 // Checkpoints are PASSIVE (they never block readers or writers) once the WAL holds
 // start_frames pages. Readers can pin old frames and keep a passive checkpoint from finishing,

@@ -280,6 +280,39 @@ TEST(ClipManifest, RejectsInvalidJson) {
   EXPECT_NE(parsed.error().message.find("not valid JSON"), std::string::npos);
 }
 
+// The good manifest's text with `from` (which must occur once) replaced by `to`.
+std::string EditedText(const std::string& from, const std::string& to) {
+  std::string text = SerializeManifest(MakeManifest());
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  EXPECT_EQ(text.find(from, at + 1), std::string::npos) << from;
+  return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+
+TEST(ClipManifest, RejectsAKeyRepeatedInOneObject) {
+  // nlohmann alone would keep the last value and accept each of these.
+  const struct {
+    std::string from, to, key;
+  } cases[] = {
+      {"\"title\": \"Kata at the shrine\"",
+       "\"title\": \"Kata at the shrine\", \"title\": \"Other\"", "title"},
+      {"\"lat_deg\": 34.7325", "\"lat_deg\": 34.7325, \"lat_deg\": 34.7325",
+       "location.lat_deg"},
+      {"\"bytes\": 200", "\"bytes\": 200, \"bytes\": 200", "parts.frames[1].bytes"},
+  };
+  for (const auto& c : cases) {
+    const auto parsed = ParseManifest(EditedText(c.from, c.to));
+    ASSERT_FALSE(parsed.ok()) << c.key;
+    EXPECT_EQ(parsed.error().code, "invalid_argument");
+    EXPECT_EQ(parsed.error().message,
+              "manifest: key " + c.key +
+                  " appears more than once in the same object; keys in a JSON object must be "
+                  "unique");
+  }
+  // The same key in sibling objects (every frame has "bytes" and "sha256") is the normal case.
+  EXPECT_TRUE(ParseManifest(EditedText("\"bytes\": 200", "\"bytes\": 200")).ok());
+}
+
 TEST(ClipManifest, RejectsNonObjectDocument) {
   const auto parsed = ParseManifest("[1, 2]");
   ASSERT_FALSE(parsed.ok());

@@ -99,6 +99,88 @@ TEST_F(PartsRouteTest, DamagedStoredPartIsReportedRefusedAtPublishAndRepairedByP
   EXPECT_TRUE(Parts(Call("GET", "/v1/clips/" + id + "/parts", alice_)).published);
 }
 
+TEST_F(PartsRouteTest, PartsLargerThanOneReadAreHashedWhole) {
+  TestClip clip;
+  clip.frames = {std::string(size_t{5} << 19, 'a') + "tail", "short frame"};  // 2.5 MiB + 4
+  clip.frames[0][size_t{1} << 20] = 'b';  // a byte at the start of the second 1 MiB piece
+  clip.map = "map";
+  clip.manifest_json = testing::TestManifestJson(1, 2, "large", "tester", clip.frames, clip.map);
+  const std::string id = Create(clip, alice_);
+  for (int n = 0; n < 2; ++n) {
+    ASSERT_EQ(Call("PUT", "/v1/clips/" + id + "/frames/" + std::to_string(n), alice_,
+                   clip.frames[n], "application/octet-stream")
+                  .status,
+              204);
+  }
+  proto::ClipParts parts = Parts(Call("GET", "/v1/clips/" + id + "/parts", alice_));
+  ASSERT_EQ(parts.parts.size(), 3u);
+  ASSERT_TRUE(parts.parts[0].held);
+  EXPECT_EQ(parts.parts[0].held->bytes, clip.frames[0].size());
+  EXPECT_EQ(parts.parts[0].held->sha256, proto::Sha256Hex(clip.frames[0]));
+  EXPECT_TRUE(parts.parts[1].Complete());
+  ASSERT_EQ(
+      Call("PUT", "/v1/clips/" + id + "/map", alice_, clip.map, "application/octet-stream").status,
+      204);
+  EXPECT_EQ(Call("POST", "/v1/clips/" + id + "/publish", alice_).status, 200);
+}
+
+// A reader whose every Read fails as if the payload had been replaced since Open.
+class ReplacedReader : public BlobReader {
+ public:
+  explicit ReplacedReader(uint64_t size) : size_(size) {}
+  uint64_t size() const override { return size_; }
+  Expected<size_t> Read(uint64_t, std::span<char>) override {
+    return MakeError("changed", "replaced while being read");
+  }
+
+ private:
+  uint64_t size_;
+};
+
+// Forwards to a real store, except that the first `replaced` OpenReader calls of a present key
+// give a ReplacedReader.
+class ReplacingBlobStore : public BlobStore {
+ public:
+  ReplacingBlobStore(BlobStore& store, int replaced) : store_(store), replaced_(replaced) {}
+  Status Put(const std::string& key, std::string_view bytes) override {
+    return store_.Put(key, bytes);
+  }
+  Expected<std::optional<std::string>> Get(const std::string& key) override {
+    return store_.Get(key);
+  }
+  Expected<std::unique_ptr<BlobReader>> OpenReader(const std::string& key) override {
+    auto reader = store_.OpenReader(key);
+    if (!reader || !*reader || replaced_ == 0) return reader;
+    --replaced_;
+    return std::unique_ptr<BlobReader>(new ReplacedReader((*reader)->size()));
+  }
+  Status DeletePrefix(const std::string& prefix) override { return store_.DeletePrefix(prefix); }
+
+ private:
+  BlobStore& store_;
+  int replaced_;
+};
+
+TEST_F(PartsRouteTest, PartReplacedWhileHashedIsHashedOnceMore) {
+  const TestClip clip = MakeTestClip(1, 2, 1);
+  const std::string id = Publish(clip, alice_);
+  Request request;
+  request.method = "GET";
+  request.target = "/v1/clips/" + id + "/parts";
+  request.headers.emplace_back("Authorization", "Bearer " + alice_);
+
+  ReplacingBlobStore once(*storage_.blobs, 1);
+  ServiceContext retried{*storage_.metadata, once, metrics_, ServiceLimits{}};
+  proto::ClipParts parts = Parts(Handle(request, retried));
+  ASSERT_EQ(parts.parts.size(), 2u);
+  EXPECT_TRUE(parts.parts[0].Complete());
+  EXPECT_TRUE(parts.parts[1].Complete());
+
+  ReplacingBlobStore twice(*storage_.blobs, 2);  // replaced again during the second try
+  ServiceContext failed{*storage_.metadata, twice, metrics_, ServiceLimits{}};
+  EXPECT_EQ(Handle(request, failed).status, 500);
+}
+
 TEST_F(PartsRouteTest, PartsAreTheOwnersOnly) {
   const TestClip clip = MakeTestClip(1, 2, 1);
   const std::string draft = Create(clip, alice_);

@@ -61,6 +61,19 @@ TEST_F(RoutesTest, CreateRejectsInvalidManifestWith422) {
   EXPECT_NE(ErrorMessage(r).find("lat_deg"), std::string::npos);
 }
 
+TEST_F(RoutesTest, CreateRejectsAManifestWithARepeatedKeyWith422) {
+  const std::string manifest = MakeTestClip(1, 2).manifest_json;
+  ASSERT_EQ(manifest.find('{'), 0u);
+  // A second "title" first in the object; the parser would otherwise keep the last one.
+  const std::string repeated = "{\"title\": \"shadow\"," + manifest.substr(1);
+  Response r = Call("POST", "/v1/clips", alice_, repeated, "application/json");
+  EXPECT_EQ(r.status, 422) << r.body;
+  EXPECT_EQ(ErrorCode(r), "invalid_manifest");
+  EXPECT_NE(ErrorMessage(r).find("key title appears more than once"), std::string::npos)
+      << ErrorMessage(r);
+  EXPECT_EQ(Call("POST", "/v1/clips", alice_, manifest, "application/json").status, 201);
+}
+
 TEST_F(RoutesTest, CreateRejectsOversizedManifestWith413) {
   context_->limits.max_manifest_bytes = 100;
   Response r =

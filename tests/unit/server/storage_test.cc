@@ -1,5 +1,8 @@
 // Storage on real SQLite files in a temp dir: migrations, transactions, blobs.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <filesystem>
 
 #include "server/storage/migrations.h"
 #include "server/storage/sqlite.h"
@@ -108,6 +111,58 @@ TEST(Sqlite, TransactionRollsBackUnlessCommitted) {
   auto mode = db->Prepare("PRAGMA journal_mode");
   ASSERT_TRUE(mode.ok() && *mode->Step());
   EXPECT_EQ(mode->ColumnText(0), "wal");
+}
+
+// The permission bits of a file (e.g. 0600).
+unsigned ModeBits(const std::string& path) {
+  struct stat st {};
+  EXPECT_EQ(::stat(path.c_str(), &st), 0) << path;
+  return st.st_mode & 0777;
+}
+
+// Sets the process umask for one scope.
+class ScopedUmask {
+ public:
+  explicit ScopedUmask(mode_t mask) : old_(::umask(mask)) {}
+  ~ScopedUmask() { ::umask(old_); }
+
+ private:
+  mode_t old_;
+};
+
+TEST(Sqlite, NewDatabaseFilesAreOwnerOnly) {
+  TempDir dir;
+  const std::string path = (dir.path() / "private.sqlite").string();
+  ScopedUmask umask(022);  // would give 0644 to a file created with mode 0666
+  auto db = sqlite::Database::Open(path);
+  ASSERT_TRUE(db.ok()) << db.error().message;
+  ASSERT_TRUE(db->Exec("CREATE TABLE t(x); INSERT INTO t VALUES (1);").ok());
+  ASSERT_TRUE(std::filesystem::exists(path + "-wal"));  // open: not yet checkpointed away
+  ASSERT_TRUE(std::filesystem::exists(path + "-shm"));
+  EXPECT_EQ(ModeBits(path), 0600u);
+  EXPECT_EQ(ModeBits(path + "-wal"), 0600u);
+  EXPECT_EQ(ModeBits(path + "-shm"), 0600u);
+}
+
+TEST(Sqlite, ExistingDatabaseKeepsItsMode) {
+  TempDir dir;
+  const std::string path = (dir.path() / "shared.sqlite").string();
+  { ASSERT_TRUE(sqlite::Database::Open(path).ok()); }
+  ASSERT_EQ(::chmod(path.c_str(), 0640), 0);
+  auto db = sqlite::Database::Open(path);
+  ASSERT_TRUE(db.ok()) << db.error().message;
+  ASSERT_TRUE(db->Exec("CREATE TABLE t(x)").ok());
+  EXPECT_EQ(ModeBits(path), 0640u);
+}
+
+TEST(Sqlite, CommitsSyncFullyUnlessAskedNotTo) {
+  TempDir dir;
+  const std::string path = (dir.path() / "sync.sqlite").string();
+  auto full = sqlite::Database::Open(path);
+  auto normal = sqlite::Database::Open(path, sqlite::Sync::kNormal);
+  ASSERT_TRUE(full.ok() && normal.ok());
+  EXPECT_EQ(CountRows(*full, "PRAGMA synchronous"), 2);  // FULL
+  EXPECT_EQ(CountRows(*normal, "PRAGMA synchronous"), 1);  // NORMAL
 }
 
 TEST(Sqlite, MissingDirectoryIsAClearError) {
