@@ -3,7 +3,9 @@
 //      (southern Europe) straight through the storage layer (one transaction).
 //   2. Nearby search through the store alone (us_per_query), then over HTTP with `clients`
 //      keep-alive client threads for `seconds`: qps, p50_ms, p99_ms.
-//   3. Uploads: `clients` threads PUT 1 MiB frames for `seconds` (bounded in bytes): mb_per_s.
+//   3. Uploads: `clients` threads PUT 1 MiB frames for `seconds` (bounded in bytes): mb_per_s,
+//      with every commit synced to disk (the default) and again without (upload_http_unsynced,
+//      synchronous=NORMAL): what the durability of a 204 costs.
 // N is 10^5 and 10^6 (only 10^5 with --quick; --clips N picks one). Loopback only.
 // With --db DIR the seeded databases stay in DIR as bench-N.db, and a later run with the same
 // N reuses one that holds N published clips (the uploads add only drafts).
@@ -19,6 +21,7 @@
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <mutex>
 #include <random>
@@ -303,6 +306,42 @@ long long SeededClips(const std::string& db_path) {
   return count->ColumnInt(0);
 }
 
+// Runs `body(port, url)` against an HttpServer on loopback over `storage` (no rate limit:
+// the bench measures the server, not the limiter).
+Status WithServer(server::Storage& storage,
+                  const std::function<Status(uint16_t, const std::string&)>& body) {
+  server::Metrics metrics;
+  server::ServiceContext context{*storage.metadata, *storage.blobs, metrics,
+                                 server::ServiceLimits{}};
+  server::ServerOptions options;
+  options.port = 0;
+  options.rate_limit.per_second = 0;
+  server::HttpServer http_server(context, options);
+  auto port = http_server.Listen();
+  if (!port) return port.error();
+  std::thread runner([&] { http_server.Run(false); });
+  Status status = body(*port, "http://127.0.0.1:" + std::to_string(*port));
+  http_server.Stop();
+  runner.join();
+  return status;
+}
+
+Status UploadRow(const std::string& name, uint16_t port, const std::string& url,
+                 const std::string& token, long long count, const Settings& settings,
+                 proto::Report& report) {
+  auto upload = UploadLoad(port, url, token, settings);
+  if (!upload) return upload.error();
+  report.rows.push_back(proto::ReportRow()
+                            .Add("test", name)
+                            .Add("n", count)
+                            .Add("clients", static_cast<long long>(settings.clients))
+                            .Add("mb_per_s", upload->mb_per_s)
+                            .Add("p50_ms", upload->p50_ms)
+                            .Add("p99_ms", upload->p99_ms)
+                            .Add("errors", upload->errors));
+  return {};
+}
+
 Status RunOne(long long count, const Settings& settings, proto::Report& report) {
   // A kept database (--db DIR) is named by its clip count alone, so the next run finds it.
   const std::string db_path =
@@ -330,40 +369,32 @@ Status RunOne(long long count, const Settings& settings, proto::Report& report) 
                             .Add("clients", 1LL)
                             .Add("us_per_query", us));
 
-  server::Metrics metrics;
-  server::ServiceContext context{*storage->metadata, *storage->blobs, metrics,
-                                 server::ServiceLimits{}};
-  server::ServerOptions options;
-  options.port = 0;
-  options.rate_limit.per_second = 0;  // measure the server, not the limiter
-  server::HttpServer http_server(context, options);
-  auto port = http_server.Listen();
-  if (!port) return port.error();
-  std::thread runner([&] { http_server.Run(false); });
-  const std::string url = "http://127.0.0.1:" + std::to_string(*port);
-
-  const LoadResult nearby = NearbyLoad(*port, settings);
-  report.rows.push_back(proto::ReportRow()
-                            .Add("test", std::string("nearby_http"))
-                            .Add("n", count)
-                            .Add("clients", static_cast<long long>(settings.clients))
-                            .Add("qps", nearby.qps)
-                            .Add("p50_ms", nearby.p50_ms)
-                            .Add("p99_ms", nearby.p99_ms)
-                            .Add("mean_hits", nearby.mean_hits)
-                            .Add("errors", nearby.errors));
-  auto upload = UploadLoad(*port, url, *token, settings);
-  http_server.Stop();
-  runner.join();
-  if (!upload) return upload.error();
-  report.rows.push_back(proto::ReportRow()
-                            .Add("test", std::string("upload_http"))
-                            .Add("n", count)
-                            .Add("clients", static_cast<long long>(settings.clients))
-                            .Add("mb_per_s", upload->mb_per_s)
-                            .Add("p50_ms", upload->p50_ms)
-                            .Add("p99_ms", upload->p99_ms)
-                            .Add("errors", upload->errors));
+  Status served = WithServer(*storage, [&](uint16_t port, const std::string& url) -> Status {
+    const LoadResult nearby = NearbyLoad(port, settings);
+    report.rows.push_back(proto::ReportRow()
+                              .Add("test", std::string("nearby_http"))
+                              .Add("n", count)
+                              .Add("clients", static_cast<long long>(settings.clients))
+                              .Add("qps", nearby.qps)
+                              .Add("p50_ms", nearby.p50_ms)
+                              .Add("p99_ms", nearby.p99_ms)
+                              .Add("mean_hits", nearby.mean_hits)
+                              .Add("errors", nearby.errors));
+    return UploadRow("upload_http", port, url, *token, count, settings, report);
+  });
+  if (!served) return served;
+  storage->metadata.reset();
+  storage->blobs.reset();
+  // The same uploads with commits that are not synced to disk (synchronous=NORMAL): what the
+  // durability of a 204 costs.
+  server::StorageOptions unsynced;
+  unsynced.fsync_each_commit = false;
+  storage = server::OpenSqliteStorage(db_path, unsynced);
+  if (!storage) return storage.error();
+  served = WithServer(*storage, [&](uint16_t port, const std::string& url) {
+    return UploadRow("upload_http_unsynced", port, url, *token, count, settings, report);
+  });
+  if (!served) return served;
   storage->metadata.reset();
   storage->blobs.reset();
   if (!settings.keep_db) {

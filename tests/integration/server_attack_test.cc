@@ -4,6 +4,7 @@
 // others, and each malformed request gets its status and a close.
 #include <gtest/gtest.h>
 #include <poll.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <atomic>
@@ -264,6 +265,38 @@ TEST_F(ServerAttack, EachMalformedRequestGetsItsStatusAndAClose) {
     EXPECT_TRUE(raw.PeerClosed()) << c.what << ": the connection stayed open";
   }
   EXPECT_EQ(Health(), 200);
+}
+
+TEST_F(ServerAttack, AManifestWithARepeatedKeyIs422) {
+  // {"title":"a","title":"b"} means different things to different JSON readers: refused, not
+  // silently read as one of them.
+  StartWith({});
+  clip_ = testing::MakeSyntheticClip(34.7, 135.7, 1, 100, 3, "twice");
+  const std::string repeated = "{\"title\":\"shadow\"," + clip_.manifest_json.substr(1);
+  auto r = proto::HttpClient(url_).Send({"POST",
+                                         "/v1/clips",
+                                         {{"Authorization", "Bearer " + token_}},
+                                         "application/json",
+                                         repeated});
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r->status, 422) << r->body;
+  EXPECT_NE(r->body.find("invalid_manifest"), std::string::npos) << r->body;
+  EXPECT_NE(r->body.find("title"), std::string::npos) << r->body;
+  auto mine = proto::ApiClient(url_, token_).MyClips();
+  ASSERT_TRUE(mine.ok());
+  EXPECT_TRUE(mine->empty()) << "a refused manifest left a draft";
+}
+
+TEST_F(ServerAttack, OtherLocalUsersCannotReadTheDatabase) {
+  const mode_t before = ::umask(022);  // a permissive umask, as on most systems
+  StartWith({});
+  ::umask(before);
+  ASSERT_FALSE(Draft(1, 100).empty());  // the server has written (WAL and shm exist)
+  for (const char* suffix : {"", "-wal", "-shm"}) {
+    struct stat st {};
+    ASSERT_EQ(::stat((db_ + suffix).c_str(), &st), 0) << db_ << suffix;
+    EXPECT_EQ(st.st_mode & 0777, 0600u) << db_ << suffix;
+  }
 }
 
 }  // namespace
