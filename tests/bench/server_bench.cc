@@ -9,6 +9,8 @@
 // N is 10^5 and 10^6 (only 10^5 with --quick; --clips N picks one). Loopback only.
 // With --db DIR the seeded databases stay in DIR as bench-N.db, and a later run with the same
 // N reuses one that holds N published clips (the uploads add only drafts).
+// --attacks runs only the adversarial section instead (server_attack_bench.h): 10^4 clips
+// (--clips N), C normal clients, S seconds per measurement (default 8), about 3.5 minutes.
 #include "tests/bench/server_bench.h"
 
 #include <unistd.h>
@@ -32,6 +34,7 @@
 #include "server/storage/open_storage.h"
 #include "server/storage/sqlite.h"
 #include "tests/bench/bench_support.h"
+#include "tests/bench/server_attack_bench.h"
 #include "tests/bench/server_bench_support.h"
 
 namespace reenact::bench {
@@ -323,13 +326,14 @@ int RunServerBench(const CommandLine& cl) {
   } else {
     settings.clip_counts = {100'000, 1'000'000};
   }
+  const bool attacks = cl.Has("attacks");
   std::filesystem::path temp_dir;
   if (auto dir = cl.Get("db")) {
     if (!std::filesystem::is_directory(*dir)) {
       return fail(MakeError("usage", "--db wants an existing directory for the bench databases"));
     }
     settings.db_dir = *dir;
-    settings.keep_db = true;
+    settings.keep_db = !attacks;  // the attack database is removed after the run
   } else {
     std::string pattern =
         (std::filesystem::temp_directory_path() / "reenact-bench-XXXXXX").string();
@@ -341,16 +345,26 @@ int RunServerBench(const CommandLine& cl) {
   }
   proto::Report report{"server", {}};
   Status status;
-  for (long long count : settings.clip_counts) {
-    status = RunOne(count, settings, report);
-    if (!status) break;
+  if (attacks) {
+    AttackBenchOptions options;
+    options.db_dir = settings.db_dir;
+    if (*clips > 0) options.clips = *clips;
+    options.clients = settings.clients;
+    if (cl.Has("seconds")) options.seconds = settings.seconds;
+    options.only = cl.GetOr("only", "");
+    status = RunAttackBench(options, report);
+  } else {
+    for (long long count : settings.clip_counts) {
+      status = RunOne(count, settings, report);
+      if (!status) break;
+    }
   }
   if (!temp_dir.empty()) {
     std::error_code ec;
     std::filesystem::remove_all(temp_dir, ec);
   }
   if (!status) return fail(status.error());
-  std::cout << report.FormatTable();
+  std::cout << report.FormatTable(attacks ? 2 : 3);
   if (auto json = cl.Get("json")) {
     if (Status s = report.WriteJson(*json); !s.ok()) return fail(s.error());
   }
