@@ -26,7 +26,7 @@ constexpr const char* kUsage =
     "  reenact-bench server --attacks [--only GROUP] [--clips N] [--clients C] [--seconds S]\n"
     "                       [--json FILE]\n"
     "                       instead, the server under attack: 10^4 clips, S = 8 s per\n"
-    "                       measurement, about 3.5 min; groups: slow-headers, bodies,\n"
+    "                       measurement, about 3 min; groups: slow-headers, bodies,\n"
     "                       slow-body, heavy, stalled\n"
     "  reenact-bench sources [--oni FILE] [--tum DIR] [--repeats R] [--json FILE]\n"
     "  reenact-bench capture [--frames N] [--repeats R] [--tum DIR] [--json FILE]\n"

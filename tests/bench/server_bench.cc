@@ -10,7 +10,7 @@
 // With --db DIR the seeded databases stay in DIR as bench-N.db, and a later run with the same
 // N reuses one that holds N published clips (the uploads add only drafts).
 // --attacks runs only the adversarial section instead (server_attack_bench.h): 10^4 clips
-// (--clips N), C normal clients, S seconds per measurement (default 8), about 3.5 minutes.
+// (--clips N), C normal clients, S seconds per measurement (default 8), about 3 minutes.
 #include "tests/bench/server_bench.h"
 
 #include <unistd.h>
