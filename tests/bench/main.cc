@@ -21,7 +21,13 @@ constexpr const char* kUsage =
     "usage:\n"
     "  reenact-bench core [--repeats R] [--quick] [--only GROUP] [--json FILE]\n"
     "                     groups: selection, mapping, render, model\n"
-    "  reenact-bench server ...\n"
+    "  reenact-bench server [--quick] [--clips N] [--clients C] [--seconds S] [--db DIR]\n"
+    "                       [--json FILE]\n"
+    "  reenact-bench server --attacks [--only GROUP] [--clips N] [--clients C] [--seconds S]\n"
+    "                       [--json FILE]\n"
+    "                       instead, the server under attack: 10^4 clips, S = 8 s per\n"
+    "                       measurement, about 3 min; groups: slow-headers, bodies,\n"
+    "                       slow-body, heavy, stalled\n"
     "  reenact-bench sources [--oni FILE] [--tum DIR] [--repeats R] [--json FILE]\n"
     "  reenact-bench capture [--frames N] [--repeats R] [--tum DIR] [--json FILE]\n"
     "  reenact-bench viewer [--frames N] [--repeats R] [--texturing NAME] [--json FILE]\n";
@@ -61,7 +67,7 @@ int main(int argc, char** argv) {
   // Flags of every command; each command reads its own.
   const CommandLineSpec spec{{"repeats", "only", "json", "clips", "clients", "seconds", "db", "oni",
                               "tum", "frames", "texturing"},
-                             {"quick"}};
+                             {"quick", "attacks"}};
   return RunTool("reenact-bench", kUsage, spec,
                  {{"core", Core},
                   {"server", bench::RunServerBench},

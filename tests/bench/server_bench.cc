@@ -9,16 +9,14 @@
 // N is 10^5 and 10^6 (only 10^5 with --quick; --clips N picks one). Loopback only.
 // With --db DIR the seeded databases stay in DIR as bench-N.db, and a later run with the same
 // N reuses one that holds N published clips (the uploads add only drafts).
+// --attacks runs only the adversarial section instead (server_attack_bench.h): 10^4 clips
+// (--clips N), C normal clients, S seconds per measurement (default 8), about 3 minutes.
 #include "tests/bench/server_bench.h"
 
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
-#include <boost/asio/connect.hpp>
-#include <boost/asio/io_context.hpp>
-#include <boost/asio/ip/tcp.hpp>
-#include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <filesystem>
 #include <functional>
@@ -36,17 +34,14 @@
 #include "server/storage/open_storage.h"
 #include "server/storage/sqlite.h"
 #include "tests/bench/bench_support.h"
+#include "tests/bench/server_attack_bench.h"
+#include "tests/bench/server_bench_support.h"
 
 namespace reenact::bench {
 namespace {
 
-namespace beast = boost::beast;
-namespace http = beast::http;
-using tcp = boost::asio::ip::tcp;
+namespace http = boost::beast::http;
 
-constexpr double kMinLat = 35, kMaxLat = 45, kMinLon = -5, kMaxLon = 15;
-constexpr double kQueryRadiusM = 2500;
-constexpr int kQueryLimit = 20;
 constexpr size_t kUploadFrameBytes = size_t{1} << 20;
 constexpr size_t kMaxUploadBytes = size_t{1} << 30;  // bound on what one run writes
 
@@ -57,96 +52,6 @@ struct Settings {
   std::string db_dir;   // where the databases go (a temp dir unless --db DIR)
   bool keep_db = false;  // --db DIR: seeded databases stay there and later runs reuse them
 };
-
-// Seeds `count` published clips, owned by one user, in one transaction.
-Status Seed(const std::string& db_path, long long count) {
-  auto storage = server::OpenSqliteStorage(db_path);  // applies the migrations
-  if (!storage) return storage.error();
-  auto db = server::sqlite::Database::Open(db_path);
-  if (!db) return db.error();
-  if (Status s = db->Exec("INSERT INTO users(name, created_at) VALUES ('seed', 0)"); !s) return s;
-  const int64_t owner = db->LastInsertRowId();
-  auto tx = server::sqlite::Transaction::Begin(*db);
-  if (!tx) return tx.error();
-  auto clip = db->Prepare(
-      "INSERT INTO clips(public_id, owner_id, state, title, author, lat_deg, lon_deg, alt_m, "
-      "duration_s, frame_count, manifest, manifest_sha256, created_at, published_at) VALUES "
-      "(?1, ?2, 'published', 'seeded', 'bench', ?3, ?4, 0, 4, 120, '{}', '', 0, 0)");
-  auto box = db->Prepare(
-      "INSERT INTO clip_boxes(id, min_lat, max_lat, min_lon, max_lon) VALUES (?1, ?2, ?2, ?3, ?3)");
-  if (!clip) return clip.error();
-  if (!box) return box.error();
-  std::mt19937_64 rng(42);
-  std::uniform_real_distribution<double> lat(kMinLat, kMaxLat), lon(kMinLon, kMaxLon);
-  char id[32];
-  for (long long i = 0; i < count; ++i) {
-    std::snprintf(id, sizeof id, "seed%020lld", i);
-    const double la = lat(rng), lo = lon(rng);
-    clip->Reset();
-    clip->BindText(1, id).Bind(2, owner).Bind(3, la).Bind(4, lo);
-    if (Status s = clip->Run(); !s) return s;
-    box->Reset();
-    box->Bind(1, db->LastInsertRowId()).Bind(2, la).Bind(3, lo);
-    if (Status s = box->Run(); !s) return s;
-  }
-  return tx->Commit();
-}
-
-double Percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  const size_t k = std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size())));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
-
-// One keep-alive HTTP/1.1 connection (the project's HttpClient opens one per request, which
-// would measure connection setup rather than the server).
-class KeepAliveClient {
- public:
-  explicit KeepAliveClient(uint16_t port) : socket_(ioc_) {
-    socket_.connect(tcp::endpoint(boost::asio::ip::make_address("127.0.0.1"), port));
-    socket_.set_option(tcp::no_delay(true));
-  }
-  // The status, or -1 on a transport error.
-  int Send(http::verb verb, const std::string& target, const std::string& token,
-           const std::string& body, size_t* hits = nullptr) {
-    http::request<http::string_body> request(verb, target, 11);
-    request.set(http::field::host, "127.0.0.1");
-    if (!token.empty()) request.set(http::field::authorization, "Bearer " + token);
-    if (!body.empty()) request.set(http::field::content_type, "application/octet-stream");
-    request.body() = body;
-    request.prepare_payload();
-    beast::error_code ec;
-    http::write(socket_, request, ec);
-    if (ec) return -1;
-    http::response<http::string_body> response;
-    http::read(socket_, buffer_, response, ec);
-    if (ec) return -1;
-    if (hits) {
-      size_t n = 0;
-      for (size_t at = response.body().find("\"id\""); at != std::string::npos;
-           at = response.body().find("\"id\"", at + 1)) {
-        ++n;
-      }
-      *hits = n;
-    }
-    return static_cast<int>(response.result_int());
-  }
-
- private:
-  boost::asio::io_context ioc_;
-  tcp::socket socket_;
-  beast::flat_buffer buffer_;
-};
-
-std::string NearbyTarget(std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> lat(kMinLat + 0.1, kMaxLat - 0.1),
-      lon(kMinLon + 0.1, kMaxLon - 0.1);
-  char target[160];
-  std::snprintf(target, sizeof target, "/v1/clips?near=%.6f,%.6f&radius_m=%.0f&limit=%d", lat(rng),
-                lon(rng), kQueryRadiusM, kQueryLimit);
-  return target;
-}
 
 // Nearby through the metadata store alone: microseconds per query.
 double StoreMicrosPerQuery(server::MetadataStore& store, int queries) {
@@ -226,21 +131,11 @@ Expected<LoadResult> UploadLoad(uint16_t port, const std::string& url, const std
     std::memcpy(f.data(), &n, sizeof n);
     return f;
   };
-  proto::ClipManifest m;
-  m.title = "upload";
-  m.author = "bench";
-  m.capture_time = "2024-05-01T12:00:00Z";
-  m.location = {40, 5, 0, 3, std::nullopt};
-  m.color_camera = {640, 480, 525.0, 525.0, 319.5, 239.5, {}};
-  m.depth_camera = {640, 480, 525.0, 525.0, 319.5, 239.5, {}};
-  for (int i = 0; i < kBodyPartCount; ++i) m.radius_ratio[i] = 0.2;
-  m.frame_count = frames_per_clip;
-  m.frame_rate_hz = 30;
+  std::vector<proto::PartInfo> frames;
   for (int n = 0; n < frames_per_clip; ++n) {
-    m.frame_parts.push_back({kUploadFrameBytes, proto::Sha256Hex(frame_bytes(n))});
+    frames.push_back({kUploadFrameBytes, proto::Sha256Hex(frame_bytes(n))});
   }
-  m.map_part = {3, proto::Sha256Hex("map")};
-  const std::string manifest = proto::SerializeManifest(m);
+  const std::string manifest = BenchManifest("upload", frames, {3, proto::Sha256Hex("map")});
   proto::ApiClient api(url, token);
   std::vector<std::string> ids;
   for (int c = 0; c < settings.clients; ++c) {
@@ -431,13 +326,14 @@ int RunServerBench(const CommandLine& cl) {
   } else {
     settings.clip_counts = {100'000, 1'000'000};
   }
+  const bool attacks = cl.Has("attacks");
   std::filesystem::path temp_dir;
   if (auto dir = cl.Get("db")) {
     if (!std::filesystem::is_directory(*dir)) {
       return fail(MakeError("usage", "--db wants an existing directory for the bench databases"));
     }
     settings.db_dir = *dir;
-    settings.keep_db = true;
+    settings.keep_db = !attacks;  // the attack database is removed after the run
   } else {
     std::string pattern =
         (std::filesystem::temp_directory_path() / "reenact-bench-XXXXXX").string();
@@ -449,16 +345,26 @@ int RunServerBench(const CommandLine& cl) {
   }
   proto::Report report{"server", {}};
   Status status;
-  for (long long count : settings.clip_counts) {
-    status = RunOne(count, settings, report);
-    if (!status) break;
+  if (attacks) {
+    AttackBenchOptions options;
+    options.db_dir = settings.db_dir;
+    if (*clips > 0) options.clips = *clips;
+    options.clients = settings.clients;
+    if (cl.Has("seconds")) options.seconds = settings.seconds;
+    options.only = cl.GetOr("only", "");
+    status = RunAttackBench(options, report);
+  } else {
+    for (long long count : settings.clip_counts) {
+      status = RunOne(count, settings, report);
+      if (!status) break;
+    }
   }
   if (!temp_dir.empty()) {
     std::error_code ec;
     std::filesystem::remove_all(temp_dir, ec);
   }
   if (!status) return fail(status.error());
-  std::cout << report.FormatTable();
+  std::cout << report.FormatTable(attacks ? 2 : 3);
   if (auto json = cl.Get("json")) {
     if (Status s = report.WriteJson(*json); !s.ok()) return fail(s.error());
   }
