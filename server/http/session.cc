@@ -30,7 +30,7 @@ constexpr size_t kBodyReadBytes = 64 * 1024;
 constexpr size_t kPieceBytes = 64 * 1024;
 // A refused request's unread body is read and discarded up to this much, for this long, so
 // that the client reads the answer rather than a reset; then the connection closes.
-constexpr size_t kDrainBytes = 8 * 1024 * 1024;
+constexpr size_t kDrainBytes = 1024 * 1024;
 constexpr size_t kRefusedConnectionDrainBytes = 64 * 1024;
 constexpr auto kDrainTime = std::chrono::seconds(2);
 
