@@ -23,6 +23,9 @@ namespace asio = boost::asio;
 namespace beast = boost::beast;
 using tcp = asio::ip::tcp;
 
+// How long a connection waiting for its first request counts as just opened (evicted last).
+constexpr auto kFreshConnection = std::chrono::seconds(1);
+
 class HttpServer::Impl : public std::enable_shared_from_this<HttpServer::Impl> {
  public:
   Impl(ServiceContext& context, const ServerOptions& options)
@@ -183,13 +186,25 @@ std::optional<Response> HttpServer::Impl::Admission(const std::string& address) 
 }
 
 bool HttpServer::Impl::EvictOne() {
-  std::shared_ptr<Session> oldest;
+  // A connection part way through a header is the likelier slow sender (honest clients send
+  // a header in one piece), so those go first; then connections idle for over a second; last
+  // the ones just opened, whose first request may be on its way. Oldest first in each.
+  const int64_t fresh_since =
+      (std::chrono::steady_clock::now() - kFreshConnection).time_since_epoch().count();
+  auto rank = [fresh_since](const Session& session) {
+    const int64_t since = session.phase_since();
+    const int group = session.phase() == Session::Phase::kHeader ? 0
+                      : since < fresh_since                     ? 1
+                                                                : 2;
+    return std::make_pair(group, since);
+  };
+  std::shared_ptr<Session> chosen;
   for (const auto& weak : sessions) {
     auto session = weak.lock();
     if (!session || !session->Evictable()) continue;
-    if (!oldest || session->phase_since() < oldest->phase_since()) oldest = std::move(session);
+    if (!chosen || rank(*session) < rank(*chosen)) chosen = std::move(session);
   }
-  return oldest && oldest->Evict();
+  return chosen && chosen->Evict();
 }
 
 void ServerOptions::Check() const {

@@ -13,9 +13,10 @@
 //  - Bodies are read only into memory reserved from max_body_memory (503 with Retry-After
 //    when it is full); downloads of stored payloads are streamed in 64 KiB pieces.
 //  - One address holds at most max_connections_per_address connections (503 beyond). At
-//    max_connections, the connection that has waited longest for a request header (idle or
-//    slow) is closed to make room; only when every connection is busy is a new one answered
-//    503.
+//    max_connections, a connection waiting for a request header is closed to make room: the
+//    oldest of those part way through a header, else the longest idle, connections opened
+//    in the last second last; only when every connection is busy with a request is a new one
+//    answered 503.
 //  - Malformed requests are answered 400 (431 for an oversized header, 505 for an HTTP
 //    version other than 1.x) and closed (request_framing.h).
 // Requests carrying a bearer token spend that token's rate-limit credit (rate_limiter.h);
@@ -46,8 +47,8 @@ struct ServerOptions {
   // Threads running route handlers and storage reads; >= 0, 0 = twice the hardware threads,
   // at least 4 (handlers wait on the disk). Default 0.
   int handler_threads = 0;
-  // Connections served at once; >= 1. At the cap, the connection longest idle or slowest to
-  // send its header is closed for a new one; when all are busy, new ones get 503. Default 1024.
+  // Connections served at once; >= 1. At the cap, a connection waiting for a header is closed
+  // for a new one (see above); when all are busy, new ones get 503. Default 1024.
   int max_connections = 1024;
   // Connections one client address may hold at once; >= 0, 0 = no limit (behind a proxy,
   // where every connection comes from the proxy's address). More get 503. Default 128.

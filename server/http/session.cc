@@ -123,7 +123,10 @@ bool Session::Evict() {
   bool expected = false;
   if (phase_ == Phase::kBusy || !evicting_.compare_exchange_strong(expected, true)) return false;
   asio::dispatch(stream_.get_executor(), [self = shared_from_this()] {
-    if (self->phase_ != Phase::kBusy) return self->Close();
+    // A request that arrived but is not read yet (the loop is behind) keeps its connection.
+    beast::error_code ec;
+    const bool request_waiting = self->stream_.socket().available(ec) > 0 && !ec;
+    if (self->phase_ != Phase::kBusy && !request_waiting) return self->Close();
     self->evicting_ = false;  // it began a request meanwhile: it stays
   });
   return true;

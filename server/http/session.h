@@ -40,11 +40,14 @@ class Session : public std::enable_shared_from_this<Session> {
   void Start();
   // Closes the connection now if it is between requests; otherwise after the response.
   void Shutdown();
-  // Closes the connection if it is still idle or reading a request header (to make room for
-  // a new one at the connection limit); false when it is busy or already being evicted.
+  // Closes the connection if it is still idle or reading a request header and has no unread
+  // bytes waiting (to make room for a new one at the connection limit); false when it is busy
+  // or already being evicted. The close happens on the connection's own thread, so the cap
+  // may be passed by the few connections whose eviction finds a request waiting.
   bool Evict();
 
   bool Evictable() const { return phase_ != Phase::kBusy && !evicting_; }
+  Phase phase() const { return phase_; }
   // When the current phase began (steady clock ticks).
   int64_t phase_since() const { return phase_since_; }
 

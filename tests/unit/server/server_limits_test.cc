@@ -1,6 +1,6 @@
 // The server's protective limits on real sockets: per-token rate limits (429), the cap on
-// concurrent connections (the longest-waiting idle connection makes room; 503 when all are
-// busy), the per-address cap, keep-alive.
+// concurrent connections (a half-sent header, else the longest idle connection, makes room;
+// 503 when all are busy), the per-address cap, keep-alive.
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -144,6 +144,24 @@ TEST_F(ServerLimitsTest, AtTheCapTheLongestIdleConnectionMakesRoomForANewOne) {
   EXPECT_TRUE(b.PeerClosed()) << "the longest idle connection should have made room";
   a.Send(kHealth);
   EXPECT_NE(a.ReadUntil("\"ok\"}").find("200 OK"), std::string::npos) << "a was not idle longest";
+}
+
+TEST_F(ServerLimitsTest, AtTheCapAHalfSentHeaderGoesBeforeAnOlderIdleConnection) {
+  ServerOptions options;
+  options.max_connections = 2;
+  Start(options);
+  RawConnection idle(port_), half(port_);
+  idle.Send(kHealth);
+  EXPECT_NE(idle.ReadUntil("\"ok\"}").find("200 OK"), std::string::npos);
+  half.Send("GET /healthz HTTP/1.1\r\nHo");  // newer than idle's wait, but never finished
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+
+  RawConnection third(port_);
+  third.Send(kHealth);
+  EXPECT_NE(third.ReadUntil("\"ok\"}").find("200 OK"), std::string::npos);
+  EXPECT_TRUE(half.PeerClosed()) << "the half-sent header should have made room";
+  idle.Send(kHealth);
+  EXPECT_NE(idle.ReadUntil("\"ok\"}").find("200 OK"), std::string::npos);
 }
 
 TEST_F(ServerLimitsTest, WhenEveryConnectionIsBusyANewOneGets503AndServiceResumes) {
