@@ -45,6 +45,10 @@ Response PutPart(const Request& request, ServiceContext& context, const RouteMat
 Response Publish(const Request& request, ServiceContext& context, const RouteMatch& match);
 Response DeleteClip(const Request& request, ServiceContext& context, const RouteMatch& match);
 Response ListNearby(const Request& request, ServiceContext& context, const RouteMatch& match);
+// ListNearby examining at most max_scanned rows of the search box (0 = no bound); nullopt when
+// the box holds more.
+std::optional<Response> ListNearbyBounded(const Request& request, ServiceContext& context,
+                                          const RouteMatch& match, size_t max_scanned);
 Response GetManifest(const Request& request, ServiceContext& context, const RouteMatch& match);
 Response GetPart(const Request& request, ServiceContext& context, const RouteMatch& match);
 // GET /v1/me/clips[?manifest_sha256=HEX]: the caller's clips, optionally only those created

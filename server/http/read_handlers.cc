@@ -87,7 +87,12 @@ proto::ClipSummary Summary(const ClipRecord& clip, double distance_m) {
 
 }  // namespace
 
-Response ListNearby(const Request& /*request*/, ServiceContext& context, const RouteMatch& match) {
+Response ListNearby(const Request& request, ServiceContext& context, const RouteMatch& match) {
+  return *ListNearbyBounded(request, context, match, 0);
+}
+
+std::optional<Response> ListNearbyBounded(const Request& /*request*/, ServiceContext& context,
+                                          const RouteMatch& match, size_t max_scanned) {
   const ServiceLimits& limits = context.limits;
   auto params = ParseQuery(match.query);
   if (!params) return BadRequest("malformed percent-escape in the query string");
@@ -127,7 +132,9 @@ Response ListNearby(const Request& /*request*/, ServiceContext& context, const R
     if (!query.after) return BadRequest("invalid cursor; pass next_cursor of a previous page");
   }
   query.limit = limit + 1;
+  query.max_scanned = max_scanned;
   auto hits = context.metadata.Nearby(query);
+  if (!hits && hits.error().code == "too_costly" && max_scanned > 0) return std::nullopt;
   if (!hits) return StorageFailure(hits.error());
   const bool more = hits->size() > static_cast<size_t>(limit);
   if (more) hits->resize(limit);

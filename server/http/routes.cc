@@ -70,6 +70,18 @@ Response Handle(const Request& request, ServiceContext& context) {
   }
 }
 
+std::optional<Response> HandleQuick(const Request& request, ServiceContext& context,
+                                    size_t max_scanned) {
+  if (request.method != "GET") return std::nullopt;
+  const RouteMatch match = MatchRoute(request.target);
+  if (match.route != RouteId::kClips) return std::nullopt;
+  try {
+    return handlers::ListNearbyBounded(request, context, match, max_scanned);
+  } catch (const std::exception&) {
+    return std::nullopt;  // Handle runs it again and reports the failure
+  }
+}
+
 std::optional<Response> Admit(const Request& head, std::optional<uint64_t> content_length,
                               ServiceContext& context) {
   const RouteMatch match = MatchRoute(head.target);

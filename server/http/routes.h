@@ -20,6 +20,17 @@ namespace reenact::server {
 // Handles one request. Never throws for any request content.
 Response Handle(const Request& request, ServiceContext& context);
 
+// Rows of a nearby search's box that HandleQuick examines at most (about 1 ms of work).
+inline constexpr size_t kQuickScanRows = 2000;
+
+// The response when the request can be answered within a small fixed bound of work, with no
+// write and no wait on a lock: a nearby search whose box holds at most max_scanned rows. The
+// server answers those on the network thread, saving two hand-offs between threads (a third
+// of nearby throughput on 2 cores); nullopt for everything else, which goes to Handle on the
+// handler pool. Never throws.
+std::optional<Response> HandleQuick(const Request& request, ServiceContext& context,
+                                    size_t max_scanned = kQuickScanRows);
+
 // What can be decided from a request's header alone, before its body is read, so that no
 // body is read for a caller that may not send it: for POST /v1/clips the token and the
 // Content-Type; for PUT of a frame or the map also the clip's owner, the part and the declared

@@ -269,6 +269,9 @@ void Session::OnRequest() {
   request.body = std::move(message.body());
   bytes_in_ = request.body.size();
   keep_alive_ = message.keep_alive();
+  if (request.body.empty()) {
+    if (auto quick = HandleQuick(request, core_.context)) return Reply(std::move(*quick));
+  }
   // The body's memory stays reserved until the handler is done with it.
   asio::post(core_.handlers, [self = shared_from_this(), request = std::move(request),
                               memory = std::move(body_memory_)]() mutable {

@@ -5,6 +5,7 @@
 // Every method is safe to call from several threads. Failures of the store itself come back
 // with code "storage"; they never carry user input back out.
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -75,6 +76,9 @@ struct NearbyQuery {
     std::string id;
   };
   std::optional<Key> after;  // keyset pagination cursor
+  // Rows of the search box examined at most; 0 = no bound. Past it the search stops with code
+  // "too_costly" (the caller may run it again without a bound, elsewhere).
+  size_t max_scanned = 0;
 };
 
 // Largest radius nearby search accepts: 2000 km (a "near me" query, not a world dump).

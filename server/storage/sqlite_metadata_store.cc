@@ -353,6 +353,7 @@ Expected<std::vector<NearbyHit>> SqliteMetadataStore::Nearby(const NearbyQuery& 
   // back twice, and only then are ids remembered.
   const std::vector<LatLonBox> boxes = BoundingBoxes(query.lat_deg, query.lon_deg, query.radius_m);
   std::set<std::string> seen;
+  size_t scanned = 0;
   for (const LatLonBox& box : boxes) {
     stmt->Reset();
     stmt->Bind(1, box.min_lat_deg)
@@ -363,6 +364,10 @@ Expected<std::vector<NearbyHit>> SqliteMetadataStore::Nearby(const NearbyQuery& 
       auto row = stmt->Step();
       if (!row) return row.error();
       if (!*row) break;
+      if (query.max_scanned > 0 && ++scanned > query.max_scanned) {
+        return MakeError("too_costly", "the search box holds more than " +
+                                           std::to_string(query.max_scanned) + " rows");
+      }
       // The distance first (columns 5, 6: lat, lon): most of a box's corners lie outside.
       const double d = HaversineDistanceM(query.lat_deg, query.lon_deg, stmt->ColumnDouble(5),
                                           stmt->ColumnDouble(6));

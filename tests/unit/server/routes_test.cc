@@ -232,6 +232,36 @@ TEST_F(RoutesTest, OnlyOwnerDeletesAndDeleteRemovesEveryPart) {
 // Distances below are arc lengths R * angle with R = 6371008.8 m along the equator or a
 // meridian through the pole, computed by hand: 0.05 deg -> 5559.754 m, 0.15 deg ->
 // 16679.262 m, 0.1 deg -> 11119.508 m, 0.45 deg -> 50037.786 m.
+TEST_F(RoutesTest, QuickPathAnswersSmallNearbySearchesAsHandleDoesAndDefersTheRest) {
+  for (const char* title : {"c0", "c1", "c2", "c3"}) {
+    Publish(MakeTestClip(48.0 + 0.001 * (title[1] - '0'), 11.0, 1, title), alice_);
+  }
+  Request nearby;
+  nearby.method = "GET";
+  nearby.target = "/v1/clips?near=48,11&radius_m=2000&limit=3";
+  const Response full = Handle(nearby, *context_);
+  ASSERT_EQ(full.status, 200);
+  // A box of 4 rows within a bound of 4: the same answer, byte for byte (cursor included).
+  const std::optional<Response> quick = HandleQuick(nearby, *context_, 4);
+  ASSERT_TRUE(quick.has_value());
+  EXPECT_EQ(quick->status, 200);
+  EXPECT_EQ(quick->body, full.body);
+  // A bound below the box's rows: left to the pool, never a partial or wrong answer.
+  EXPECT_FALSE(HandleQuick(nearby, *context_, 3).has_value());
+  // A malformed query is answered at once (no rows read).
+  nearby.target = "/v1/clips?near=91,0";
+  const std::optional<Response> bad = HandleQuick(nearby, *context_, 4);
+  ASSERT_TRUE(bad.has_value());
+  EXPECT_EQ(bad->status, 400);
+  // Other routes and methods always go to the pool.
+  nearby.target = "/healthz";
+  EXPECT_FALSE(HandleQuick(nearby, *context_).has_value());
+  Request create;
+  create.method = "POST";
+  create.target = "/v1/clips?near=48,11";
+  EXPECT_FALSE(HandleQuick(create, *context_).has_value());
+}
+
 TEST_F(RoutesTest, NearbyAcrossTheAntimeridian) {
   const std::string east = Publish(MakeTestClip(0, 179.9, 1, "east"), alice_);
   const std::string west = Publish(MakeTestClip(0, -179.9, 1, "west"), alice_);
