@@ -241,13 +241,14 @@ void Session::OnHeader() {
 void Session::OnAdmitted(std::optional<Response> refusal) {
   if (closed_) return;
   if (refusal) return Refuse(std::move(*refusal));
-  const size_t need = static_cast<size_t>(parser_->content_length().value_or(body_limit_));  // NOLINT
+  const size_t need = static_cast<size_t>(parser_->content_length().value_or(body_limit_));
   auto reservation = core_.body_memory.TryReserve(need);
   if (!reservation) return Refuse(BodyMemoryExhausted());
   body_memory_ = std::move(*reservation);
   parser_->body_limit(body_limit_);
   if (!beast::iequals(parser_->get()[http::field::expect], "100-continue")) return ReadBody();
   auto go_on = std::make_shared<http::response<http::empty_body>>(http::status::continue_, 11);
+  transfer_start_ = Clock::now();
   stream_.expires_at(WriteDeadline(64));
   http::async_write(stream_, *go_on,
                     [self = shared_from_this(), go_on](beast::error_code ec, size_t) {
