@@ -40,7 +40,6 @@
 #include <netinet/tcp.h>
 #include <poll.h>
 #include <sys/epoll.h>
-#include <sys/resource.h>
 #include <sys/socket.h>
 #include <time.h>
 #include <unistd.h>
@@ -60,6 +59,7 @@
 #include <thread>
 
 #include "proto/clip/content_hash.h"
+#include "server/app/open_file_limit.h"
 #include "server/auth/token.h"
 #include "server/http/http_server.h"
 #include "server/storage/open_storage.h"
@@ -108,13 +108,6 @@ Resident ResidentNow() {
 }
 
 // Thousands of sockets on each side of loopback need more descriptors than a default soft limit.
-void RaiseDescriptorLimit() {
-  rlimit limit{};
-  if (getrlimit(RLIMIT_NOFILE, &limit) != 0) return;
-  limit.rlim_cur = limit.rlim_max;
-  setrlimit(RLIMIT_NOFILE, &limit);
-}
-
 std::string Fixed(double value, int decimals) {
   char text[64];
   std::snprintf(text, sizeof text, "%.*f", decimals, value);
@@ -924,7 +917,11 @@ Status RunAttackBench(const AttackBenchOptions& options, proto::Report& report) 
     return MakeError("usage", "--only: unknown group '" + options.only +
                                   "'; groups: slow-headers, bodies, slow-body, heavy, stalled");
   }
-  RaiseDescriptorLimit();
+  // Both ends of up to 2,000 attacker connections live in this process, beside the server's.
+  if (Status s = server::RaiseOpenFileLimit(2 * 2000 + server::ServerOptions{}.max_connections);
+      !s) {
+    return s.error();
+  }
   const std::string db_path = options.db_dir + "/attack-" + std::to_string(getpid()) + ".db";
   auto remove_db = [&] {
     for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(db_path + suffix);
@@ -939,37 +936,30 @@ Status RunAttackBench(const AttackBenchOptions& options, proto::Report& report) 
   std::cerr << "reenact-bench: seeded " << options.clips << " clips and the attack clips in "
             << Fixed(SecondsOf(Clock::now() - seed_start), 1) << " s" << std::endl;
 
-  server::Metrics metrics;
-  server::ServiceContext context{*storage->metadata, *storage->blobs, metrics,
-                                 server::ServiceLimits{}};
-  server::ServerOptions server_options;  // the defaults, as deployed
-  server_options.port = 0;
-  server::HttpServer http_server(context, server_options);
-  auto port = http_server.Listen();
-  if (!port) return port.error();
-  std::thread runner([&] { http_server.Run(false); });
-
-  Scenarios scenarios(options, *port, *users, report);
-  auto runs = [&](const char* group) { return options.only.empty() || options.only == group; };
-  if (runs("slow-headers")) {
-    scenarios.SlowHeaders(1000, false);
-    scenarios.SlowHeaders(2000, false);
-    scenarios.SlowHeaders(2000, true);
-  }
-  if (runs("bodies")) {
-    scenarios.Bodies("anonymous bodies x64", "", 40, true);
-    scenarios.Bodies("wrong-owner bodies x64", users->other_token, 44, true);
-    scenarios.Bodies("owner bodies x64 (bad hash)", users->owner_token, 48, false);
-  }
-  if (runs("slow-body")) scenarios.SlowBodyAndHeader();
-  if (runs("heavy")) {
-    scenarios.HeavyParts();
-    scenarios.HeavyDownloads();
-  }
-  if (runs("stalled")) scenarios.StalledDownloads();
-
-  http_server.Stop();
-  runner.join();
+  // The defaults, as deployed.
+  Status served = WithServer(*storage, server::ServerOptions{}, [&](uint16_t port,
+                                                                    const std::string&) -> Status {
+    Scenarios scenarios(options, port, *users, report);
+    auto runs = [&](const char* group) { return options.only.empty() || options.only == group; };
+    if (runs("slow-headers")) {
+      scenarios.SlowHeaders(1000, false);
+      scenarios.SlowHeaders(2000, false);
+      scenarios.SlowHeaders(2000, true);
+    }
+    if (runs("bodies")) {
+      scenarios.Bodies("anonymous bodies x64", "", 40, true);
+      scenarios.Bodies("wrong-owner bodies x64", users->other_token, 44, true);
+      scenarios.Bodies("owner bodies x64 (bad hash)", users->owner_token, 48, false);
+    }
+    if (runs("slow-body")) scenarios.SlowBodyAndHeader();
+    if (runs("heavy")) {
+      scenarios.HeavyParts();
+      scenarios.HeavyDownloads();
+    }
+    if (runs("stalled")) scenarios.StalledDownloads();
+    return {};
+  });
+  if (!served) return served;
   storage->metadata.reset();
   storage->blobs.reset();
   remove_db();

@@ -201,26 +201,6 @@ long long SeededClips(const std::string& db_path) {
   return count->ColumnInt(0);
 }
 
-// Runs `body(port, url)` against an HttpServer on loopback over `storage` (no rate limit:
-// the bench measures the server, not the limiter).
-Status WithServer(server::Storage& storage,
-                  const std::function<Status(uint16_t, const std::string&)>& body) {
-  server::Metrics metrics;
-  server::ServiceContext context{*storage.metadata, *storage.blobs, metrics,
-                                 server::ServiceLimits{}};
-  server::ServerOptions options;
-  options.port = 0;
-  options.rate_limit.per_second = 0;
-  server::HttpServer http_server(context, options);
-  auto port = http_server.Listen();
-  if (!port) return port.error();
-  std::thread runner([&] { http_server.Run(false); });
-  Status status = body(*port, "http://127.0.0.1:" + std::to_string(*port));
-  http_server.Stop();
-  runner.join();
-  return status;
-}
-
 Status UploadRow(const std::string& name, uint16_t port, const std::string& url,
                  const std::string& token, long long count, const Settings& settings,
                  proto::Report& report) {
@@ -264,7 +244,10 @@ Status RunOne(long long count, const Settings& settings, proto::Report& report) 
                             .Add("clients", 1LL)
                             .Add("us_per_query", us));
 
-  Status served = WithServer(*storage, [&](uint16_t port, const std::string& url) -> Status {
+  // No rate limit: the bench measures the server, not the limiter.
+  server::ServerOptions options;
+  options.rate_limit.per_second = 0;
+  Status served = WithServer(*storage, options, [&](uint16_t port, const std::string& url) -> Status {
     const LoadResult nearby = NearbyLoad(port, settings);
     report.rows.push_back(proto::ReportRow()
                               .Add("test", std::string("nearby_http"))
@@ -286,7 +269,7 @@ Status RunOne(long long count, const Settings& settings, proto::Report& report) 
   unsynced.fsync_each_commit = false;
   storage = server::OpenSqliteStorage(db_path, unsynced);
   if (!storage) return storage.error();
-  served = WithServer(*storage, [&](uint16_t port, const std::string& url) {
+  served = WithServer(*storage, options, [&](uint16_t port, const std::string& url) {
     return UploadRow("upload_http_unsynced", port, url, *token, count, settings, report);
   });
   if (!served) return served;

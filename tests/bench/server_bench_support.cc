@@ -1,5 +1,7 @@
 #include "tests/bench/server_bench_support.h"
 
+#include <thread>
+
 #include <algorithm>
 #include <cstdio>
 
@@ -150,6 +152,23 @@ int KeepAliveClient::Send(http::verb verb, const std::string& target, const std:
     *hits = n;
   }
   return static_cast<int>(response.result_int());
+}
+
+Status WithServer(server::Storage& storage, server::ServerOptions options,
+                  const std::function<Status(uint16_t, const std::string&)>& body) {
+  server::Metrics metrics;
+  server::ServiceContext context{*storage.metadata, *storage.blobs, metrics,
+                                 server::ServiceLimits{}};
+  options.host = "127.0.0.1";
+  options.port = 0;
+  server::HttpServer http_server(context, options);
+  auto port = http_server.Listen();
+  if (!port) return port.error();
+  std::thread runner([&] { http_server.Run(false); });
+  Status status = body(*port, "http://127.0.0.1:" + std::to_string(*port));
+  http_server.Stop();
+  runner.join();
+  return status;
 }
 
 }  // namespace reenact::bench

@@ -1,7 +1,7 @@
 #pragma once
 // Shared pieces of `reenact-bench server` (server_bench.cc) and its adversarial section
 // (server_attack_bench.cc): the seeded database, nearby query targets, a keep-alive HTTP
-// client with a deadline, percentiles and a valid manifest.
+// client with a deadline, percentiles, a valid manifest and a server on loopback.
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
@@ -9,6 +9,7 @@
 #include <boost/beast/http.hpp>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <random>
 #include <string>
@@ -16,6 +17,8 @@
 
 #include "common/error/expected.h"
 #include "proto/clip/manifest.h"
+#include "server/http/http_server.h"
+#include "server/storage/open_storage.h"
 
 namespace reenact::bench {
 
@@ -37,6 +40,11 @@ std::string NearbyTarget(std::mt19937_64& rng);
 // A valid manifest (ParseManifest accepts it) at (40, 5) whose parts are `frames` and `map`.
 std::string BenchManifest(const std::string& title, const std::vector<proto::PartInfo>& frames,
                           const proto::PartInfo& map);
+
+// Runs `body(port, url)` against an HttpServer with `options` (its port replaced by a free
+// one) listening on loopback over `storage`; stops the server after and returns body's status.
+Status WithServer(server::Storage& storage, server::ServerOptions options,
+                  const std::function<Status(uint16_t, const std::string&)>& body);
 
 // One keep-alive HTTP/1.1 connection to 127.0.0.1:port (the project's HttpClient opens one
 // per request, which would measure connection setup rather than the server). It connects on
