@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "common/cli/command_line.h"
+#include "tests/eval/kinect_reference_eval.h"
 #include "tests/eval/quality_cli.h"
 #include "tests/eval/quality_report.h"
 #include "tests/eval/reloc_eval.h"
@@ -112,6 +113,7 @@ int Segment(const CommandLine& cl) {
 }
 
 int Tracker(const CommandLine& cl) {
+  if (eval::WantsKinectReference(cl)) return eval::RunKinectReferenceCommand(cl);
   const auto command = eval::ParseTrackerCommand(cl);
   if (!command.ok()) return Fail(command.error());
   const auto run = eval::RunTrackerEval(command->options);
@@ -128,6 +130,7 @@ int main(int argc, char** argv) {
   spec.value_flags.merge(eval::SlamFlags());
   spec.value_flags.merge(eval::RelocFlags());
   spec.value_flags.merge(eval::TrackerFlags());
+  spec.value_flags.merge(eval::KinectReferenceFlags());
   return RunTool("reenact-eval", kUsage, spec,
                  {{"quality", Quality},
                   {"segment", Segment},
