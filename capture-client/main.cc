@@ -28,7 +28,7 @@ constexpr const char* kUsage =
     "      SKEL: source (default: the source's own skeletons) | track (our depth tracker:\n"
     "            start in the calibration pose, facing the sensor, arms out to the sides) |\n"
     "            json:FILE | FILE.json | kinect:FILE (UTKinect, MSR Action3D skeleton3D,\n"
-    "            MSR DailyActivity3D), each with ?frame_offset=N, ?time_offset_s=S,\n"
+    "            MSR DailyActivity3D, UTD-MHAD), each with ?frame_offset=N, ?time_offset_s=S,\n"
     "            ?tolerance_s=S\n"
     "      --poses: auto (default) = the source's poses when it has them, else RGB-D SLAM;\n"
     "               slam = SLAM even for sources with poses\n"

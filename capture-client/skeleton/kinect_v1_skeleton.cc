@@ -14,6 +14,7 @@ namespace {
 constexpr int kKinectJoints = 20;
 constexpr size_t kUtKinectNumbers = 1 + 3 * kKinectJoints;  // frame number + 20 x (x, y, z)
 constexpr size_t kRowNumbers = 4;                           // x y z c (or u v d c)
+constexpr size_t kXyzNumbers = 3;                           // x y z (UTD-MHAD)
 
 struct Line {
   int number = 0;  // 1-based line in the file
@@ -186,6 +187,36 @@ Expected<Parsed> ParseMsrAction3d(const std::vector<Line>& lines, const std::str
   return out;
 }
 
+Expected<Parsed> ParseUtdMhad(const std::vector<Line>& lines, const std::string& name,
+                              const KinectV1ReadOptions& options) {
+  Parsed out;
+  out.format = "UTD-MHAD";
+  for (const Line& line : lines)
+    if (line.values.size() != kXyzNumbers)
+      return Corrupt(name, line.number,
+                     "has " + std::to_string(line.values.size()) +
+                         " numbers, expected 3 (x y z of one joint); a truncated line?");
+  if (lines.size() % kKinectJoints != 0)
+    return Corrupt(name, lines.back().number,
+                   "the file ends inside a frame: " + std::to_string(lines.size()) +
+                       " joint lines is not a multiple of 20 (20 joints per frame); a "
+                       "truncated file?");
+  const std::array<int, 20>& to_sdk = UtdMhadToKinectSdk();
+  for (size_t f = 0; f < lines.size() / kKinectJoints; ++f) {
+    std::array<Eigen::Vector3d, kKinectJoints> joints;
+    for (int k = 0; k < kKinectJoints; ++k) {
+      const std::vector<double>& v = lines[f * kKinectJoints + k].values;
+      joints[to_sdk[k]] = Eigen::Vector3d(v[0], v[1], v[2]);
+    }
+    if (Status s =
+            CheckMetres(joints, options.max_metres, name, lines[f * kKinectJoints].number, "");
+        !s.ok())
+      return s.error();
+    AddFrame(joints, static_cast<int64_t>(f), &out);
+  }
+  return out;
+}
+
 Expected<Parsed> ParseMsrDaily(const std::vector<Line>& lines, const std::string& name,
                                const KinectV1ReadOptions& options) {
   Parsed out;
@@ -254,6 +285,8 @@ std::string_view KinectTextVariantName(KinectTextVariant variant) {
       return "msr-action3d";
     case KinectTextVariant::kMsrDailyActivity3d:
       return "msr-daily";
+    case KinectTextVariant::kUtdMhad:
+      return "utd-mhad";
   }
   return "detect";
 }
@@ -261,7 +294,7 @@ std::string_view KinectTextVariantName(KinectTextVariant variant) {
 std::optional<KinectTextVariant> KinectTextVariantFromName(std::string_view name) {
   for (KinectTextVariant v :
        {KinectTextVariant::kDetect, KinectTextVariant::kUtKinect, KinectTextVariant::kMsrAction3d,
-        KinectTextVariant::kMsrDailyActivity3d})
+        KinectTextVariant::kMsrDailyActivity3d, KinectTextVariant::kUtdMhad})
     if (KinectTextVariantName(v) == name) return v;
   return std::nullopt;
 }
@@ -285,6 +318,13 @@ const std::array<int, 20>& MsrAction3dToKinectSdk() {
   return order;
 }
 
+const std::array<int, 20>& UtdMhadToKinectSdk() {
+  // head, shoulder_center, spine, hip_center, then the limbs in the SDK's own order.
+  static const std::array<int, 20> order = {3,  2,  1,  0,  4,  5,  6,  7,  8,  9,
+                                            10, 11, 12, 13, 14, 15, 16, 17, 18, 19};
+  return order;
+}
+
 Skeleton KinectSdkJointsToSkeleton(const std::array<Eigen::Vector3d, 20>& joints_in_kinect) {
   std::array<Eigen::Vector3d, kKinectJoints> positions;
   std::array<double, kKinectJoints> confidences;
@@ -303,8 +343,8 @@ Expected<SkeletonTrack> ParseKinectV1SkeletonText(std::string_view text, const s
   if (lines->empty())
     return MakeError("corrupt", name +
                                     ": the file is empty; expected a Kinect v1 skeleton track "
-                                    "(UTKinect joints_sXX_eYY.txt or MSR "
-                                    "aXX_sYY_eZZ_skeleton3D.txt)");
+                                    "(UTKinect joints_sXX_eYY.txt, MSR "
+                                    "aXX_sYY_eZZ_skeleton3D.txt or UTD-MHAD skeleton.txt)");
   KinectTextVariant variant = options.variant;
   if (variant == KinectTextVariant::kDetect) {
     const Line& first = lines->front();
@@ -318,17 +358,21 @@ Expected<SkeletonTrack> ParseKinectV1SkeletonText(std::string_view text, const s
       case 2:
         variant = KinectTextVariant::kMsrDailyActivity3d;
         break;
+      case kXyzNumbers:
+        variant = KinectTextVariant::kUtdMhad;
+        break;
       default:
         return Corrupt(name, first.number,
                        "has " + std::to_string(first.values.size()) +
                            " numbers; a Kinect v1 skeleton file has 61 (UTKinect: frame number "
-                           "and 20 joints), 4 (MSR Action3D: one joint) or a 2-number header "
-                           "(MSR DailyActivity3D)");
+                           "and 20 joints), 4 (MSR Action3D: one joint), 3 (UTD-MHAD: one "
+                           "joint) or a 2-number header (MSR DailyActivity3D)");
     }
   }
   Expected<Parsed> parsed =
       variant == KinectTextVariant::kUtKinect      ? ParseUtKinect(*lines, name, options)
       : variant == KinectTextVariant::kMsrAction3d ? ParseMsrAction3d(*lines, name, options)
+      : variant == KinectTextVariant::kUtdMhad     ? ParseUtdMhad(*lines, name, options)
                                                    : ParseMsrDaily(*lines, name, options);
   if (!parsed.ok()) return parsed.error();
   if (parsed->frames.empty())

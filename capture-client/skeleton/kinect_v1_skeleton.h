@@ -3,7 +3,8 @@
 // layouts of the public action data sets, read into a SkeletonTrack (16 joints, sensor
 // frame).
 //
-// Layouts (detected from the numbers on the first data line, or forced by the variant):
+// Layouts (detected from the count of numbers on the first data line, or forced by the
+// variant):
 // - UTKinect-Action3D, joints_sXX_eYY.txt: one line per frame, "n x1 y1 z1 ... x20 y20 z20"
 //   (61 numbers): n = the frame's image number (integer >= 0, colorImg<n>.jpg), then the 20
 //   joints in Kinect SDK order in skeleton space (metres). frame_index = n. The files repeat
@@ -21,13 +22,17 @@
 //   4 numbers, two per joint in Kinect SDK order: first "x y z c" in real-world coordinates
 //   (used), then "u v depth c" in screen coordinates (ignored). With two skeletons the first
 //   is used. frame_index = 0-based frame number in the file.
+// - UTD-MHAD, skeleton.txt (as in ../shared/data/utd-mhad/aA_sS_t1/): no header; 20 lines of
+//   "x y z" per frame (metres, Kinect skeleton space), one per joint in the UTD-MHAD order
+//   below; frame_index = 0, 1, 2, ... in file order (frame i belongs to depth image i).
 // Sources of this understanding (no official specification is public beyond the data sets'
 // readmes): the DailyActivity3D readme as quoted in public loaders (e.g. the MSRDA import
 // scripts on GitHub); MSR Action3D / UTKinect readers in public code: R. Vemulapalli et al.'s
 // Lie-group action recognition code (process_skeletal_data.m: UTKinect "frame + 60 values",
 // MSR "4 x 20 per frame"), the dai MSRActionSkeletonInstance reader (4 values per joint line,
 // its joint order) and other Python readers of *_skeleton3D.txt. We have no sample file of
-// any of these sets: tests write files by construction.
+// any of these sets except UTD-MHAD (../shared/data/utd-mhad, read by tests); the others'
+// tests write files by construction.
 //
 // MSR Action3D joint order (line k of a frame -> Kinect SDK joint), as named by the dai
 // reader and others: 0 ShoulderRight, 1 ShoulderLeft, 2 ShoulderCenter, 3 Spine, 4 HipRight,
@@ -37,6 +42,9 @@
 // order with left and right exchanged; the data set names no joints, so its left/right is
 // uncertain; the order above is the one its readers name explicitly.
 //
+// UTD-MHAD joint order (the data set's own list): head, shoulder_center, spine, hip_center,
+// then the SDK order from ShoulderLeft on: the first four are the SDK's first four reversed.
+//
 // Kinect SDK joint order (NUI_SKELETON_POSITION_INDEX; UTKinect, DailyActivity3D):
 // HipCenter, Spine, ShoulderCenter, Head, ShoulderLeft, ElbowLeft, WristLeft, HandLeft,
 // ShoulderRight, ElbowRight, WristRight, HandRight, HipLeft, KneeLeft, AnkleLeft, FootLeft,
@@ -45,6 +53,9 @@
 // Frames. Kinect skeleton space: metres, origin at the sensor, y up, z along the sensor's
 // view, x to the sensor's left. Our sensor frame (OpenCV): x right, y down, z forward, so
 //   p_sensor = (-x, -y, z)   (a rotation by pi about z; no reflection).
+// The Kinect SDK delivers its images mirrored, so skeleton x points to the right of the
+// mirrored image: the track is in the frame of the true (unmirrored) camera, the frame of a
+// depth folder read with mirrored=1 (rgbd:DIR?mirrored=1, rgbd_folder_source.h).
 // The MSR sets' real-world coordinates are taken to be this same skeleton space (they were
 // recorded with Kinect-class sensors and are read that way by the readers above).
 //
@@ -71,8 +82,8 @@
 // Errors (code "corrupt" unless noted), each naming the file and line: an empty file (or one
 // without a tracked skeleton), a token that is not a number, a non-finite number (nan, inf),
 // a line with the wrong count of numbers (truncated line), a joint count other than 20, a
-// file cut off inside a frame, a non-integral or negative frame number, a frame number that
-// goes backwards; "unsupported": values that cannot be metres (screen coordinates, mm);
+// file cut off inside a frame (MSR Action3D, UTD-MHAD: joint lines not a multiple of 20), a
+// non-integral or negative frame number, a frame number that goes backwards; "unsupported": values that cannot be metres (screen coordinates, mm);
 // "not_found" / "io": the file cannot be read.
 
 #include <Eigen/Core>
@@ -88,13 +99,14 @@
 namespace reenact::capture {
 
 enum class KinectTextVariant {
-  kDetect,             // from the first data line: 61 numbers, 4 numbers or a 2-number header
-  kUtKinect,           // joints_sXX_eYY.txt
-  kMsrAction3d,        // aXX_sYY_eZZ_skeleton3D.txt
-  kMsrDailyActivity3d  // aXX_sYY_eZZ_skeleton.txt of MSR DailyActivity3D
+  kDetect,              // from the first data line: 61, 4 or 3 numbers or a 2-number header
+  kUtKinect,            // joints_sXX_eYY.txt
+  kMsrAction3d,         // aXX_sYY_eZZ_skeleton3D.txt
+  kMsrDailyActivity3d,  // aXX_sYY_eZZ_skeleton.txt of MSR DailyActivity3D
+  kUtdMhad              // skeleton.txt of UTD-MHAD (as converted in ../shared/data)
 };
 
-// "utkinect", "msr-action3d", "msr-daily" (and "detect") <-> variant.
+// "utkinect", "msr-action3d", "msr-daily", "utd-mhad" (and "detect") <-> variant.
 std::string_view KinectTextVariantName(KinectTextVariant variant);
 std::optional<KinectTextVariant> KinectTextVariantFromName(std::string_view name);
 
@@ -120,6 +132,8 @@ Eigen::Vector3d SensorFromKinectSkeletonSpace(const Eigen::Vector3d& p_kinect);
 
 // MSR Action3D line k of a frame -> Kinect SDK joint index (the order above).
 const std::array<int, 20>& MsrAction3dToKinectSdk();
+// UTD-MHAD line k of a frame -> Kinect SDK joint index (the order above).
+const std::array<int, 20>& UtdMhadToKinectSdk();
 
 // One Kinect skeleton (20 joints in SDK order, skeleton space, all-zero = untracked) in our
 // 16 joints, sensor frame.

@@ -13,7 +13,8 @@ namespace {
 
 constexpr std::string_view kAccepted =
     "accepted: json:FILE, kinect:FILE (UTKinect joints_sXX_eYY.txt, MSR Action3D "
-    "aXX_sYY_eZZ_skeleton3D.txt, MSR DailyActivity3D aXX_sYY_eZZ_skeleton.txt) or FILE.json, "
+    "aXX_sYY_eZZ_skeleton3D.txt, MSR DailyActivity3D aXX_sYY_eZZ_skeleton.txt, UTD-MHAD "
+    "skeleton.txt) or FILE.json, "
     "each optionally with ?frame_offset=N&time_offset_s=S&tolerance_s=S";
 
 bool EndsWithJson(std::string_view s) {
@@ -95,8 +96,9 @@ Expected<SkeletonTrack> LoadSkeletonTrack(const std::string& spec) {
     if (const auto it = arg->options.find("variant"); it != arg->options.end()) {
       const std::optional<KinectTextVariant> variant = KinectTextVariantFromName(it->second);
       if (!variant)
-        return MakeError("usage", "kinect: variant=" + it->second +
-                                      " is not one of utkinect, msr-action3d, msr-daily, detect");
+        return MakeError("usage",
+                         "kinect: variant=" + it->second +
+                             " is not one of utkinect, msr-action3d, msr-daily, utd-mhad, detect");
       options.variant = *variant;
     }
     return ReadKinectV1SkeletonTrack(arg->path, options);

@@ -1,7 +1,10 @@
-// Kinect v1 20-joint text tracks (UTKinect, MSR Action3D, MSR DailyActivity3D): files written
-// from a synthetic subject through the inverse mapping (skeleton_track_test_util.h) read back
-// to the subject's 16 joints in the sensor frame; one test per bad input.
+// Kinect v1 20-joint text tracks (UTKinect, MSR Action3D, MSR DailyActivity3D, UTD-MHAD):
+// files written from a synthetic subject through the inverse mapping
+// (skeleton_track_test_util.h) read back to the subject's 16 joints in the sensor frame; one
+// test per bad input; UTD-MHAD's real files (../shared/data/utd-mhad) against its README.
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include "capture-client/skeleton/kinect_v1_skeleton.h"
 #include "tests/unit/capture-client/skeleton_track_test_util.h"
@@ -156,6 +159,60 @@ TEST(KinectSkeletonTest, MsrDailyActivityUsesTheRealWorldRowsOfTheFirstSkeleton)
   ExpectSkeletonNear(SyntheticSkeletonInSensor(1), track->frames()[1].skeleton_in_sensor);
 }
 
+TEST(KinectSkeletonTest, UtdMhadReadsBackInItsJointOrder) {
+  std::string text;
+  for (int f = 0; f < 3; ++f) text += UtdMhadFrame(KinectJoints(SyntheticSkeletonInSensor(f)));
+  Expected<SkeletonTrack> track = Parse(text);
+  ASSERT_TRUE(track.ok()) << track.error().message;
+  ASSERT_EQ(track->size(), 3u);
+  EXPECT_NE(track->description().find("UTD-MHAD"), std::string::npos);
+  for (int f = 0; f < 3; ++f) {
+    SCOPED_TRACE(f);
+    EXPECT_EQ(track->frames()[f].frame_index, f);
+    ExpectSkeletonNear(SyntheticSkeletonInSensor(f), track->frames()[f].skeleton_in_sensor);
+  }
+}
+
+TEST(KinectSkeletonTest, UtdMhadAllZeroFrameHasNoSkeleton) {
+  std::map<std::string, Eigen::Vector3d> zeros;
+  for (const std::string& name : KinectSdkNames()) zeros[name] = Eigen::Vector3d::Zero();
+  const std::string text = UtdMhadFrame(KinectJoints(SyntheticSkeletonInSensor(0))) +
+                           UtdMhadFrame(zeros) +
+                           UtdMhadFrame(KinectJoints(SyntheticSkeletonInSensor(2)));
+  Expected<SkeletonTrack> track = Parse(text, KinectTextVariant::kUtdMhad);
+  ASSERT_TRUE(track.ok()) << track.error().message;
+  ASSERT_EQ(track->size(), 2u);
+  EXPECT_EQ(track->frames()[1].frame_index, 2);
+  ExpectSkeletonNear(SyntheticSkeletonInSensor(2), track->frames()[1].skeleton_in_sensor);
+}
+
+TEST(KinectSkeletonTest, UtdMhadFileCutOffInsideAFrameIsAnError) {
+  std::string text = UtdMhadFrame(KinectJoints(SyntheticSkeletonInSensor(0)));
+  const std::string second = UtdMhadFrame(KinectJoints(SyntheticSkeletonInSensor(1)));
+  size_t at = 0;
+  for (int k = 0; k < 7; ++k) at = second.find('\n', at) + 1;
+  text += second.substr(0, at);  // 27 joint lines
+  ExpectError(Parse(text), "corrupt", "line 27: the file ends inside a frame: 27 joint lines");
+}
+
+TEST(KinectSkeletonTest, UtdMhadShortLineIsAnError) {
+  std::string text = UtdMhadFrame(KinectJoints(SyntheticSkeletonInSensor(0)));
+  text.insert(text.find('\n', text.find('\n') + 1) + 1, "0.1 2.5\n");  // a new line 3
+  ExpectError(Parse(text), "corrupt", "line 3: has 2 numbers, expected 3");
+}
+
+TEST(KinectSkeletonTest, UtdMhadNonNumberIsAnError) {
+  std::string text = UtdMhadFrame(KinectJoints(SyntheticSkeletonInSensor(0)));
+  text[text.find('\n') + 1] = 'x';  // line 2 starts with "x"
+  ExpectError(Parse(text), "corrupt", "line 2: \"x");
+}
+
+TEST(KinectSkeletonTest, UtdMhadMillimetresAreRefused) {
+  auto joints = KinectJoints(SyntheticSkeletonInSensor(0));
+  for (auto& [name, p] : joints) p *= 1000;
+  ExpectError(Parse(UtdMhadFrame(joints)), "unsupported", "not a position in metres");
+}
+
 TEST(KinectSkeletonTest, ScreenCoordinatesAreRefused) {
   std::string text;
   for (int j = 0; j < 20; ++j) text += std::to_string(120 + j) + " 80 2150 0\n";
@@ -219,6 +276,9 @@ TEST(KinectSkeletonTest, BackwardFrameNumberIsAnError) {
 
 TEST(KinectSkeletonTest, ForcedVariantChecksTheLayout) {
   ExpectError(Parse(UtKinectText({1}), KinectTextVariant::kMsrAction3d), "corrupt", "expected 4");
+  const std::string msr = MsrAction3dFrame(KinectJoints(SyntheticSkeletonInSensor(0)));
+  ExpectError(Parse(msr, KinectTextVariant::kUtdMhad), "corrupt",
+              "line 1: has 4 numbers, expected 3");
 }
 
 TEST(KinectSkeletonTest, MissingFileIsNotFound) {
@@ -240,9 +300,61 @@ TEST(KinectSkeletonTest, ReadsAFile) {
 TEST(KinectSkeletonTest, VariantNamesRoundTrip) {
   for (KinectTextVariant v :
        {KinectTextVariant::kDetect, KinectTextVariant::kUtKinect, KinectTextVariant::kMsrAction3d,
-        KinectTextVariant::kMsrDailyActivity3d})
+        KinectTextVariant::kMsrDailyActivity3d, KinectTextVariant::kUtdMhad})
     EXPECT_EQ(KinectTextVariantFromName(KinectTextVariantName(v)), v);
+  EXPECT_EQ(KinectTextVariantName(KinectTextVariant::kUtdMhad), "utd-mhad");
   EXPECT_FALSE(KinectTextVariantFromName("kinect2").has_value());
+}
+
+// UTD-MHAD's skeleton.txt of a sequence (../shared/data/utd-mhad, README there).
+std::string UtdMhadSkeletonFile(const std::string& sequence) {
+  return (fs::path(REENACT_SHARED_DATA_DIR) / "utd-mhad" / sequence / "skeleton.txt").string();
+}
+
+TEST(KinectSkeletonTest, UtdMhadRealFileHasItsFramesWithTheHeadUp) {
+  // a1_s1_t1: 960 lines = 48 frames (its camera.json says 48), a person standing.
+  Expected<SkeletonTrack> track = ReadKinectV1SkeletonTrack(UtdMhadSkeletonFile("a1_s1_t1"));
+  ASSERT_TRUE(track.ok()) << track.error().message;
+  ASSERT_EQ(track->size(), 48u);
+  EXPECT_NE(track->description().find("UTD-MHAD"), std::string::npos);
+  for (size_t f = 0; f < track->size(); ++f) {
+    SCOPED_TRACE(f);
+    const Skeleton& s = track->frames()[f].skeleton_in_sensor;
+    EXPECT_EQ(track->frames()[f].frame_index, static_cast<int64_t>(f));
+    for (int j = 0; j < kJointCount; ++j) EXPECT_EQ(s.confidence[j], 1.0);
+    // OpenCV sensor frame: y down, so the head has the smaller y; a standing adult's head is
+    // well over 0.4 m above the pelvis; 2.5-3 m away.
+    EXPECT_LT(s[Joint::kHead].y(), s[Joint::kWaist].y() - 0.4);
+    EXPECT_GT(s[Joint::kWaist].z(), 2.0);
+    EXPECT_LT(s[Joint::kWaist].z(), 3.5);
+  }
+}
+
+TEST(KinectSkeletonTest, UtdMhadRightHandWaveMovesTheRightHandOnTheSensorsLeft) {
+  // a3 is the right hand wave; the README places the moving hand (right_hand) at Kinect
+  // x = +0.22 m, i.e. sensor x = -0.22 m: a person facing a true camera has the right hand
+  // on the image's left.
+  KinectV1ReadOptions options;
+  options.variant = KinectTextVariant::kUtdMhad;
+  Expected<SkeletonTrack> track =
+      ReadKinectV1SkeletonTrack(UtdMhadSkeletonFile("a3_s1_t1"), options);
+  ASSERT_TRUE(track.ok()) << track.error().message;
+  ASSERT_GT(track->size(), 10u);
+  const Skeleton& first = track->frames()[0].skeleton_in_sensor;
+  std::array<double, kJointCount> travel{};
+  double right_hand_x = 0, left_hand_x = 0;
+  for (const SkeletonTrackFrame& frame : track->frames()) {
+    const Skeleton& s = frame.skeleton_in_sensor;
+    for (int j = 0; j < kJointCount; ++j)
+      travel[j] = std::max(travel[j], (s.position[j] - first.position[j]).norm());
+    right_hand_x += s[Joint::kRightHand].x() / track->size();
+    left_hand_x += s[Joint::kLeftHand].x() / track->size();
+  }
+  const auto most = std::max_element(travel.begin(), travel.end()) - travel.begin();
+  EXPECT_EQ(static_cast<Joint>(most), Joint::kRightHand) << JointName(static_cast<Joint>(most));
+  EXPECT_GT(travel[Index(Joint::kRightHand)], 0.5);  // a wave, not jitter
+  EXPECT_NEAR(right_hand_x, -0.22, 0.05);
+  EXPECT_GT(left_hand_x, 0.1);
 }
 
 }  // namespace

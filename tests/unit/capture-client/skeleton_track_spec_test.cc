@@ -56,6 +56,22 @@ TEST_F(SkeletonTrackSpecTest, KinectVariantOptionForcesTheLayout) {
   ExpectUsage(LoadSkeletonTrack("kinect:" + kinect_ + "?variant=kinect2"), "variant=kinect2");
 }
 
+TEST_F(SkeletonTrackSpecTest, KinectFormReadsUtdMhad) {
+  const std::string file = (dir_.path() / "skeleton.txt").string();
+  WriteText(file, UtdMhadFrame(KinectJoints(SyntheticSkeletonInSensor(0))) +
+                      UtdMhadFrame(KinectJoints(SyntheticSkeletonInSensor(1))));
+  for (const char* option : {"", "?variant=utd-mhad"}) {
+    SCOPED_TRACE(option);
+    Expected<SkeletonTrack> track = LoadSkeletonTrack("kinect:" + file + option);
+    ASSERT_TRUE(track.ok()) << track.error().message;
+    ASSERT_EQ(track->size(), 2u);
+    const std::optional<Skeleton> s = track->ForFrame(1, 0);
+    ASSERT_TRUE(s.has_value());
+    EXPECT_LT(((*s)[Joint::kHead] - SyntheticSkeletonInSensor(1)[Joint::kHead]).norm(), 1e-8);
+  }
+  EXPECT_FALSE(LoadSkeletonTrack("kinect:" + kinect_ + "?variant=utd-mhad").ok());
+}
+
 TEST_F(SkeletonTrackSpecTest, JsonFormsReadOurFormatWithTheirOptions) {
   Expected<SkeletonTrack> plain = LoadSkeletonTrack(json_);
   ASSERT_TRUE(plain.ok()) << plain.error().message;

@@ -73,6 +73,17 @@ inline const std::array<std::string, 20>& MsrAction3dNames() {
   return names;
 }
 
+// UTD-MHAD line order, by Kinect name (the data set's list: head, shoulder_center, spine,
+// hip_center, left_shoulder, ..., right_foot).
+inline const std::array<std::string, 20>& UtdMhadNames() {
+  static const std::array<std::string, 20> names = {
+      "Head",       "ShoulderCenter", "Spine",     "HipCenter",     "ShoulderLeft",
+      "ElbowLeft",  "WristLeft",      "HandLeft",  "ShoulderRight", "ElbowRight",
+      "WristRight", "HandRight",      "HipLeft",   "KneeLeft",      "AnkleLeft",
+      "FootLeft",   "HipRight",       "KneeRight", "AnkleRight",    "FootRight"};
+  return names;
+}
+
 // The 20 Kinect joints of a subject, in skeleton space, by name: our joints where Kinect
 // has them, wrists 80% of the way from elbow to hand (the hand joint is 7 cm past the wrist
 // on a 25 cm forearm) and the feet 12 cm ahead of and 6 cm below the ankles.
@@ -129,6 +140,16 @@ inline std::string MsrAction3dFrame(const std::map<std::string, Eigen::Vector3d>
   for (const std::string& name : MsrAction3dNames()) {
     text += Xyz(joints.at(name));
     text += " 0\n";
+  }
+  return text;
+}
+
+// One UTD-MHAD frame: 20 lines "x y z" in the UTD-MHAD order.
+inline std::string UtdMhadFrame(const std::map<std::string, Eigen::Vector3d>& joints) {
+  std::string text;
+  for (const std::string& name : UtdMhadNames()) {
+    text += Xyz(joints.at(name));
+    text += '\n';
   }
   return text;
 }
