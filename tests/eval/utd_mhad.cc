@@ -46,7 +46,7 @@ constexpr std::array<std::string_view, 27> kActionNames = {
 
 // A whole number >= 1 without sign or leading zero, the whole of text.
 std::optional<int> PositiveNumber(std::string_view text) {
-  if (text.empty() || text.size() > 6 || text[0] == '0') return std::nullopt;
+  if (text.empty() || text.size() > 6 || text[0] < '1' || text[0] > '9') return std::nullopt;
   int value = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
