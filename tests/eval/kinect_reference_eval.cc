@@ -230,6 +230,12 @@ Expected<KinectReferenceRun> RunKinectReferenceEval(const KinectReferenceOptions
     auto sequence =
         TrackSequence(spec, source->get(), *reference, options.tracker, options.max_frames);
     if (!sequence.ok()) return sequence.error();
+    if (options.progress) {
+      const auto given = std::count_if(sequence->tracked.begin(), sequence->tracked.end(),
+                                       [](const auto& s) { return s.has_value(); });
+      *options.progress << spec.name << ": " << sequence->tracked.size() << " frames, " << given
+                        << " with a skeleton" << std::endl;
+    }
     tracked.push_back(std::move(*sequence));
     auto& j20 = joints20.emplace_back();
     if (!spec.joints20_path.empty()) {
@@ -573,7 +579,9 @@ Expected<KinectReferenceCommand> ParseKinectReferenceCommand(const CommandLine& 
 int RunKinectReferenceCommand(const CommandLine& cl) {
   const auto command = ParseKinectReferenceCommand(cl);
   if (!command.ok()) return ReportFailure("reenact-eval", command.error());
-  const auto run = RunKinectReferenceEval(command->options);
+  KinectReferenceOptions options = command->options;
+  options.progress = &std::cerr;
+  const auto run = RunKinectReferenceEval(options);
   if (!run.ok()) return ReportFailure("reenact-eval", run.error());
   std::cout << KinectReferenceReport(*run, false).FormatTable(1);
   std::cout << WorstActionLine(*run) << "\n"

@@ -58,6 +58,7 @@
 // frame count (both counts and both sources named); the sources' and readers' errors.
 
 #include <optional>
+#include <ostream>
 #include <set>
 #include <string>
 #include <vector>
@@ -88,6 +89,7 @@ struct KinectReferenceOptions {
   std::optional<std::string> pictures_dir;
   int pictures = kPictureCount;  // >= 0
   int max_frames = -1;           // frames per sequence at most (-1: all); for tests
+  std::ostream* progress = nullptr;  // one line per sequence tracked, where given
 };
 
 // One sequence tracked: per frame (index = position in the source), the reference and the
