@@ -50,8 +50,8 @@ bool InImage(const SyntheticScene& scene, int frame, const Eigen::Vector3d& worl
 void ExpectUpperBodyInViewOnly(const SyntheticScene& scene, int step) {
   for (int f = 0; f < scene.frame_count(); f += step) {
     const Skeleton s = scene.skeleton_in_world(f);
-    for (Joint j : {Joint::kHead, Joint::kNeck, Joint::kLeftShoulder, Joint::kRightShoulder,
-                    Joint::kTorso})
+    for (Joint j :
+         {Joint::kHead, Joint::kNeck, Joint::kLeftShoulder, Joint::kRightShoulder, Joint::kTorso})
       EXPECT_TRUE(InImage(scene, f, s[j])) << JointName(j) << " frame " << f;
     for (Joint j : {Joint::kLeftKnee, Joint::kRightKnee, Joint::kLeftFoot, Joint::kRightFoot})
       EXPECT_FALSE(InImage(scene, f, s[j])) << JointName(j) << " frame " << f;
