@@ -19,8 +19,12 @@ constexpr const char* kUsage =
     "  reenact-capture record --source SRC --out DIR [--frames N] [--skeleton SKEL]\n"
     "                         [--poses auto|slam] [--title S] [--author S]\n"
     "      SRC: synthetic:SCENARIO[?body=FILE.glb[&body_height=M]] | oni:FILE |\n"
-    "           openni[:URI] | tum:DIR | clip:DIR\n"
-    "      SCENARIO: turn-and-kick | raise-and-crouch | walk-handheld (moving sensor) |\n"
+    "           openni[:URI] | tum:DIR | clip:DIR |\n"
+    "           rgbd:DIR[?calibration=FILE&depth_unit=M&fps=F&mirrored=0|1] (DIR/depth/*.png,\n"
+    "           16-bit; colour in DIR/rgb/ or DIR/color/, needed to record; DIR/camera.json\n"
+    "           or calibration.yml: capture-client/source/rgbd_folder_source.h)\n"
+    "      SCENARIO: turn-and-kick | raise-and-crouch | upper-body-turn (close-up, no\n"
+    "                floor or legs in view) | walk-handheld (moving sensor) |\n"
     "                calibration | model-walk | bvh:FILE.bvh   (model-walk and bvh: need\n"
     "                body=)\n"
     "      body=FILE.glb: a glTF skinned mesh (e.g. ../shared/data/models/CesiumMan.glb)\n"
@@ -66,6 +70,8 @@ int Record(const CommandLine& cl) {
   }
   auto source = capture::OpenFrameSource(*source_spec);
   if (!source.ok()) return Fail(source.error());
+  if (Status recordable = capture::CheckRecordableSource((*source)->info()); !recordable.ok())
+    return Fail(recordable.error());
   std::optional<capture::TrackerSkeletonSource> tracker;
   if (skeleton_spec == "track") {
     tracker.emplace((*source)->info());

@@ -124,6 +124,52 @@ BodyPose RaiseAndCrouch(double t) {
   return p;
 }
 
+// upper-body-turn (see scenario.h): the subject's place and the sensor in front of it.
+constexpr double kCloseUpSpotY = 1.0;       // the waist at world (0, 1)
+constexpr double kCloseUpDistanceM = 0.91;  // sensor to the body's vertical axis
+constexpr double kCloseUpHeightM = 1.25;    // sensor height, looking level
+
+BodyPose UpperBodyTurn(double t) {
+  BodyPose p;
+  p.root_xy = Eigen::Vector2d(0, kCloseUpSpotY);
+  p.left_leg.abduction = p.right_leg.abduction = Deg(4);
+  // Arms relaxed at the sides, the elbows a little bent.
+  for (ArmPose* arm : {&p.left_arm, &p.right_arm}) {
+    arm->abduction = Deg(10);
+    arm->elbow = Deg(20);
+  }
+  // A wave with the right hand: raised in front of the shoulder, waved side to side, lowered.
+  const double up = SmoothStep(0.3, 0.7, t) * (1 - SmoothStep(1.3, 1.7, t));
+  const double strokes = SmoothStep(0.6, 0.8, t) * (1 - SmoothStep(1.2, 1.4, t));
+  p.right_arm.abduction += Deg(40) * up + Deg(12) * std::sin(2 * kPi * 2.5 * (t - 0.7)) * strokes;
+  p.right_arm.elbow += Deg(120) * up;
+
+  // The turn, with stepping and arm swing fading in and out (as turn-and-kick's).
+  const double s = std::clamp((t - 1.7) / 3.6, 0.0, 1.0);
+  p.root_yaw = 2 * kPi * SmoothStep(0, 1, s);
+  const double envelope = std::sin(kPi * s);
+  const double step = 2 * kPi * 3 * s;
+  const double lift_left = std::max(0.0, std::sin(step)) * envelope;
+  const double lift_right = std::max(0.0, -std::sin(step)) * envelope;
+  p.left_leg.flexion = Deg(25) * lift_left;
+  p.left_leg.knee = Deg(45) * lift_left;
+  p.right_leg.flexion = Deg(25) * lift_right;
+  p.right_leg.knee = Deg(45) * lift_right;
+  p.left_arm.flexion = Deg(25) * std::sin(step) * envelope;
+  p.right_arm.flexion += -Deg(25) * std::sin(step) * envelope;
+  p.left_arm.elbow += Deg(25) * envelope;
+  p.right_arm.elbow += Deg(25) * envelope;
+  p.spine_twist = Deg(12) * std::sin(2 * kPi * s);
+
+  // Both forearms come up forward (hands in front of the waist), held, and lowered.
+  const double reach = SmoothStep(5.3, 5.8, t) * (1 - SmoothStep(6.1, 6.5, t));
+  for (ArmPose* arm : {&p.left_arm, &p.right_arm}) {
+    arm->flexion += Deg(5) * reach;
+    arm->elbow += Deg(45) * reach;
+  }
+  return p;
+}
+
 // Moves each pose's waist so that the mid-point of the ankles stays where it stands in
 // `standing`: PoseBody keeps the lower ankle at its height above the floor, but bending the
 // legs moves the ankles forward of the hips, which would slide the feet along the floor.
@@ -175,7 +221,7 @@ int Scenario::frame_count() const {
 }
 
 std::vector<std::string> SyntheticScenarioNames() {
-  return {"turn-and-kick", "raise-and-crouch", "walk-handheld",
+  return {"turn-and-kick", "raise-and-crouch", "upper-body-turn", "walk-handheld",
           "calibration",   "model-walk",       "bvh:FILE"};
 }
 
@@ -217,6 +263,12 @@ Expected<Scenario> MakeScenario(std::string_view name, uint64_t seed) {
   } else if (name == "raise-and-crouch") {
     for (int i = 0; i < 180; ++i) s.poses.push_back(RaiseAndCrouch(i / s.frame_rate_hz));
     PlantFeet(CalibrationPose(), &s.poses);
+  } else if (name == "upper-body-turn") {
+    for (int i = 0; i < 195; ++i) s.poses.push_back(UpperBodyTurn(i / s.frame_rate_hz));
+    const Eigen::Vector3d target(0, kCloseUpSpotY, kCloseUpHeightM);
+    s.world_from_sensor.assign(s.frame_count(),
+                               LookAt(target - Eigen::Vector3d(0, kCloseUpDistanceM, 0), target));
+    return s;
   } else if (name == "calibration") {
     s.poses.assign(30, CalibrationPose());
   } else if (name == "model-walk") {

@@ -27,6 +27,23 @@
 // All four with a static sensor about 3 m in front of the subject at 1.3 m height, looking
 // at it.
 //
+// "upper-body-turn" (30 fps, 195 frames = 6.5 s): a close-up without the calibration pose.
+//   The subject stands at world (0, 1) (the waist), first facing world -y, arms relaxed at
+//   the sides with the elbows a little bent.
+//   0.3-1.7 s  the right hand raised in front of the shoulder and waved side to side
+//              (0.7-1.3 s)
+//   1.7-5.3 s  a full 360-degree turn in place (to the subject's left), stepping, with
+//              swinging arms (as turn-and-kick's turn)
+//   5.3-6.5 s  both forearms brought up forward (hands in front of the waist), held
+//              5.8-6.1 s, and lowered
+//   Static sensor 0.91 m in front of the body's vertical axis (its chest's surface about
+//   0.8 m away when facing it) at 1.25 m height, looking level along world +y. On the
+//   procedural body (1.75 m) the image shows the head (the top of the skull cut off) and the
+//   trunk to the hips, on CesiumMan (1.51 m) the head and the trunk to the torso joint; the
+//   knees and feet are out of view on every frame, and so is the floor: the image's lowest
+//   ray (23.5 degrees down) meets the back wall, 2.41 m ahead, 0.2 m above the floor. The
+//   subject's nearest point stays 0.5 m or more away (beyond a Kinect's 0.4 m minimum).
+//
 // "walk-handheld" (30 fps, 225 frames = 7.5 s): 0-0.7 s the calibration pose facing the
 //   sensor, 0.7-1.2 s arms down, then one full circle of 0.8 m radius walked in 6.3 s
 //   (walk_motion.h: from the origin, first facing world -y, turning to its left, smooth

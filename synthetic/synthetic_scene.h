@@ -4,8 +4,9 @@
 // file) or a glTF skinned mesh (skinned_body.h, e.g. ../shared/data/models/CesiumMan.glb;
 // see SyntheticBodySpec), performing a scripted motion (scenario.h) in
 // a textured room (room.h), seen by a Kinect-like sensor (PinholeCamera::KinectLike(),
-// 640x480), static about 3 m in front of the subject at 1.3 m height or hand-held, as the
-// scenario says (its world_from_sensor per frame).
+// 640x480), static about 3 m in front of the subject at 1.3 m height, static 0.9 m in front
+// at 1.25 m (upper-body-turn's close-up) or hand-held, as the scenario says (its
+// world_from_sensor per frame).
 // Ground truth for tests and evaluation: the skeleton, the sensor pose, per-pixel depth,
 // the subject mask and body-part labels.
 //
@@ -57,8 +58,9 @@ struct SyntheticRenderOptions {
 
 // Which subject a scene shows.
 //  - procedural (gltf_path empty, the default): the procedural body; it plays scenarios
-//    given as poses (turn-and-kick, walk-handheld, calibration) and bvh: motion, retargeted
-//    by bone directions onto its own dimensions (body_pose_from_skeleton.h); not model-walk.
+//    given as poses (turn-and-kick, upper-body-turn, walk-handheld, calibration) and bvh:
+//    motion, retargeted by bone directions onto its own dimensions
+//    (body_pose_from_skeleton.h); not model-walk.
 //  - skinned (gltf_path set): the glTF skinned mesh at that path (.glb or .gltf), scaled to
 //    height_m (0 keeps the model's own; CesiumMan 1.51 m). It plays every scenario: poses
 //    are retargeted onto it from the procedural body's skeleton (PoseBody), bvh: motion from

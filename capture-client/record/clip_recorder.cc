@@ -389,11 +389,22 @@ void RecordOptions::Check() const {
   slam.Check();
 }
 
+Status CheckRecordableSource(const SensorInfo& info) {
+  if (info.has_color) return {};
+  return MakeError("unsupported",
+                   "cannot record a clip from " + info.description +
+                       ": it has no colour images, and a clip needs colour (viewers texture "
+                       "the model and the frames from it); record from a source with colour: "
+                       "synthetic:, oni:, openni, tum:, clip:, or rgbd:DIR with colour images in "
+                       "DIR/rgb/ or DIR/color/ (tracking and evaluation work without colour)");
+}
+
 Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::path& out_dir,
                                    const RecordOptions& options) {
   options.Check();
   const auto start = Clock::now();
   const SensorInfo& info = source.info();
+  if (Status recordable = CheckRecordableSource(info); !recordable.ok()) return recordable.error();
   if (std::error_code ec; std::filesystem::exists(out_dir, ec))
     return MakeError("already_exists",
                      out_dir.string() + " already exists; remove it or choose another --out");

@@ -131,9 +131,16 @@ struct RecordSummary {
   RecordStageTimes stage_times;
 };
 
-// Errors: the source fails or gives no frame; colour, depth and mask sizes disagree; the
-// source's poses stop part-way; no frame ends up with both a pose and a skeleton (the message
-// says which was missing and what to pass); the directory exists or cannot be written.
+// A clip stores colour (viewers texture the model and the frames from it): a source without
+// colour (SensorInfo.has_color false, e.g. rgbd:DIR without rgb/) is an Error (code
+// "unsupported") naming the source kinds that have colour. RecordClip checks it before it
+// reads a frame; callers may check it earlier.
+Status CheckRecordableSource(const SensorInfo& info);
+
+// Errors: the source has no colour (CheckRecordableSource); the source fails or gives no
+// frame; colour, depth and mask sizes disagree; the source's poses stop part-way; no frame
+// ends up with both a pose and a skeleton (the message says which was missing and what to
+// pass); the directory exists or cannot be written.
 // Nothing is left at out_dir on failure.
 Expected<RecordSummary> RecordClip(FrameSource& source, const std::filesystem::path& out_dir,
                                    const RecordOptions& options);

@@ -2,6 +2,7 @@
 
 #include "capture-client/source/clip_source.h"
 #include "capture-client/source/openni_source.h"
+#include "capture-client/source/rgbd_folder_source.h"
 #include "capture-client/source/synthetic_source.h"
 #include "capture-client/source/tum_source.h"
 
@@ -19,13 +20,18 @@ Expected<std::unique_ptr<FrameSource>> OpenFrameSource(const std::string& spec) 
     if (!tum.ok()) return tum.error();
     return std::unique_ptr<FrameSource>(std::move(tum).value());
   }
+  if (kind == "rgbd") {
+    auto rgbd = RgbdFolderSource::OpenSpec(arg);
+    if (!rgbd.ok()) return rgbd.error();
+    return std::unique_ptr<FrameSource>(std::move(rgbd).value());
+  }
   if (kind == "clip") {
     if (arg.empty()) return MakeError("usage", "--source clip:DIR needs a clip directory");
     return ClipSource::Open(arg);
   }
   return MakeError("usage", "unknown source '" + spec +
                                 "'; expected synthetic:SCENARIO, oni:FILE, openni[:URI], "
-                                "tum:DIR or clip:DIR");
+                                "tum:DIR, rgbd:DIR or clip:DIR");
 }
 
 }  // namespace reenact::capture

@@ -32,11 +32,14 @@ struct SensorInfo {
   // distance); 0 = unknown: the SLAM then keeps its default, made for real Kinect-class
   // sensors, whose depth also suffers registration and timing errors.
   double depth_sigma_1m_m = 0;
+  // Whether frames carry colour. A depth-only source (rgbd:DIR without colour images) yields
+  // frames with an empty colour image: tracking reads depth only, but a clip needs colour.
+  bool has_color = true;
 };
 
 struct SensorFrame {
   double timestamp_s = 0;
-  ImageRgb8 color;
+  ImageRgb8 color;  // empty when the source has no colour (SensorInfo.has_color)
   ImageDepthMm depth;
   // Ground truth or externally known values; absent for sources that do not know them.
   std::optional<Eigen::Isometry3d> world_from_sensor;
@@ -53,8 +56,9 @@ class FrameSource {
 };
 
 // Opens a source from its command-line form: synthetic:SCENARIO[?body=FILE.glb] (see
-// SyntheticSource::OpenSpec), oni:FILE, openni[:URI], tum:DIR, clip:DIR. An unknown or
-// unavailable kind is an Error that says what is accepted.
+// SyntheticSource::OpenSpec), oni:FILE, openni[:URI], tum:DIR, clip:DIR, rgbd:DIR[?OPTIONS]
+// (a folder of depth PNGs, optional colour and a calibration file: rgbd_folder_source.h). An
+// unknown or unavailable kind is an Error that says what is accepted.
 Expected<std::unique_ptr<FrameSource>> OpenFrameSource(const std::string& spec);
 
 }  // namespace reenact::capture

@@ -10,23 +10,30 @@ void BodyStartOptions::Check() const {
   REENACT_CHECK(heading_candidates >= 1, "heading_candidates must be >= 1");
   extremities.Check();
   REENACT_CHECK(extremity_min_offset_m >= 0, "extremity_min_offset_m must be >= 0");
+  REENACT_CHECK(facing_sensor_gain >= 0 && facing_sensor_gain < 1,
+                "facing_sensor_gain must be in [0, 1)");
 }
 
 std::optional<BodyFitResult> BestUprightFit(const BodyFitter& fitter, const PersonBlob& blob,
                                             const BodyObservation& obs,
                                             const std::vector<Eigen::Vector3d>& headings,
                                             const GeodesicExtremities* extremities,
-                                            double extremity_min_offset_m, bool* from_extremities) {
+                                            double extremity_min_offset_m,
+                                            double facing_sensor_gain, bool* from_extremities) {
   *from_extremities = false;
   if (!blob.floor_in_sensor) return std::nullopt;
   const Eigen::Vector3d up = blob.floor_in_sensor->normal;
   const Eigen::Vector3d ground =
       blob.centroid - blob.floor_in_sensor->SignedDistance(blob.centroid) * up;
+  const auto weighed = [&](const BodyFitResult& r) {
+    const bool away = FacesAwayFrom(r.pose, up, Eigen::Vector3d::Zero());
+    return away ? r.cost / (1 - facing_sensor_gain) : r.cost;
+  };
   std::optional<BodyFitResult> best;
   for (const Eigen::Vector3d& forward : headings) {
     const ArticulatedPose start = UprightPose(fitter.body(), ground, up, forward);
     BodyFitResult r = fitter.FitFromFar(start, obs);
-    if (!best || r.cost < best->cost) {
+    if (!best || weighed(r) < weighed(*best)) {
       best = std::move(r);
       *from_extremities = false;
     }
@@ -37,7 +44,7 @@ std::optional<BodyFitResult> BestUprightFit(const BodyFitter& fitter, const Pers
                             extremity_min_offset_m);
     if (placed == 0) continue;
     BodyFitResult e = fitter.FitFromFar(reach, obs);
-    if (e.cost < best->cost) {
+    if (weighed(e) < weighed(*best)) {
       best = std::move(e);
       *from_extremities = true;
     }
@@ -49,8 +56,7 @@ std::optional<StartedFit> StartTrack(const BodyFitter& fitter, const GoodFitCrit
                                      const PersonBlob& blob, const BodyObservation& obs,
                                      const CalibrationOptions& calibration,
                                      const BodyStartOptions& options,
-                                     const std::optional<ArticulatedPose>& last_pose,
-                                     bool with_extremities) {
+                                     const std::optional<ArticulatedPose>& last_pose) {
   const CalibrationPoseTest test = TestCalibrationPose(blob, calibration);
   if (auto start = CalibrationStartPose(fitter.body(), blob, test)) {
     BodyFitResult r = fitter.LocalFitFromFar(*start, obs);
@@ -64,12 +70,12 @@ std::optional<StartedFit> StartTrack(const BodyFitter& fitter, const GoodFitCrit
   if (last_pose)
     if (auto f = HorizontalForward(*last_pose, up)) headings.push_back(*f);
   std::optional<GeodesicExtremities> extremities;
-  if (options.from_extremities && with_extremities)
+  if (options.from_extremities)
     extremities = FindGeodesicExtremities(blob.points, blob.floor_in_sensor, options.extremities);
   bool from_extremities = false;
   std::optional<BodyFitResult> best =
       BestUprightFit(fitter, blob, obs, headings, extremities ? &*extremities : nullptr,
-                     options.extremity_min_offset_m, &from_extremities);
+                     options.extremity_min_offset_m, options.facing_sensor_gain, &from_extremities);
   if (!best || !good.Good(*best)) return std::nullopt;
   return StartedFit{std::move(*best), TrackStart::kSilhouette, from_extremities};
 }

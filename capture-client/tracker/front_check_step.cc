@@ -1,14 +1,16 @@
 #include "capture-client/tracker/front_check_step.h"
 
+#include "capture-client/tracker/heading.h"
 #include "capture-client/tracker/limb_swap.h"
 #include "common/error/check.h"
 
 namespace reenact::capture {
 
 void FrontCheckOptions::Check() const {
-  REENACT_CHECK(frames >= 1 && every >= 1 && gain >= 0 && gain < 1 && confirm_frames >= 0,
-                "front check: frames and every must be >= 1, gain in [0, 1), confirm_frames "
-                ">= 0");
+  REENACT_CHECK(frames >= 1 && every >= 1 && gain >= 0 && gain < 1 && turn_away_gain >= gain &&
+                    turn_away_gain < 1 && confirm_frames >= 0,
+                "front check: frames and every must be >= 1, gain in [0, 1), turn_away_gain in "
+                "[gain, 1), confirm_frames >= 0");
 }
 
 FrontCheckStep::FrontCheckStep(const FrontCheckOptions& options) : options_(options) {
@@ -63,12 +65,17 @@ std::vector<Candidate> FrontCheckStep::FollowRival(const StepFrame& frame,
   rival.pose = r.pose;
   rival.rival_cost += r.cost;
   rival.track_cost += current.cost;
-  const double keep = 1 - options_.gain;
+  // Turning a body that faces the sensor away from it takes the larger gain.
+  const Eigen::Vector3d& up = frame.blob.floor_in_sensor->normal;
+  const Eigen::Vector3d sensor = Eigen::Vector3d::Zero();
+  const bool turns_away =
+      FacesAwayFrom(r.pose, up, sensor) && !FacesAwayFrom(current.pose, up, sensor);
+  const double keep = 1 - (turns_away ? options_.turn_away_gain : options_.gain);
   const bool confirmed = rival.rival_cost <= keep * rival.track_cost;
-  const bool vetoed = rival.track_cost <= keep * rival.rival_cost;
+  const bool vetoed = rival.track_cost <= (1 - options_.gain) * rival.rival_cost;
   if (!confirmed && !vetoed && ++rival.frames < options_.confirm_frames) return {};
   rival_.reset();
-  if (vetoed) return {};
+  if (vetoed || (!confirmed && turns_away)) return {};
   return {{std::move(r), /*judged=*/true}};
 }
 

@@ -51,6 +51,13 @@ std::optional<Eigen::Vector3d> HorizontalForward(const ArticulatedPose& pose,
   return Horizontal(pose.root_rotation.col(0), up);
 }
 
+bool FacesAwayFrom(const ArticulatedPose& pose, const Eigen::Vector3d& up,
+                   const Eigen::Vector3d& sensor) {
+  const auto forward = HorizontalForward(pose, up);
+  const auto toward = Horizontal(sensor - pose.root_translation, up);
+  return forward && toward && forward->dot(*toward) < 0;
+}
+
 ArticulatedPose TurnedBy(const ArticulatedPose& pose, const Eigen::Vector3d& up, double angle_rad) {
   ArticulatedPose out = pose;
   if (!(up.norm() > 1e-9)) return out;

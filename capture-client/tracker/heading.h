@@ -36,6 +36,12 @@ std::vector<Eigen::Vector3d> CandidateHeadings(const Eigen::Vector3d& up,
 // The body standing upright on the floor point `ground` (the waist above it at the rest
 // pose's waist height), facing `forward` (made horizontal; unit), arms and legs straight down.
 // forward parallel to up gives the identity rotation's heading projected (a defined pose).
+// Whether the body faces away from a sensor at `sensor` (sensor frame: the origin): its
+// horizontal forward points away from the horizontal direction to the sensor. False where
+// either is (nearly) vertical.
+bool FacesAwayFrom(const ArticulatedPose& pose, const Eigen::Vector3d& up,
+                   const Eigen::Vector3d& sensor);
+
 ArticulatedPose UprightPose(const ArticulatedBody& body, const Eigen::Vector3d& ground,
                             const Eigen::Vector3d& up, const Eigen::Vector3d& forward);
 

@@ -57,4 +57,12 @@ Skeleton WithJointConfidence(const ArticulatedBody& body, const BodyFitResult& f
   return s;
 }
 
+void MarkJointsOutOfView(const PinholeCamera& camera, Skeleton* skeleton) {
+  for (int j = 0; j < kJointCount; ++j) {
+    const auto px = camera.Project(skeleton->position[j]);
+    if (!px || px->x() < 0 || px->y() < 0 || px->x() > camera.width || px->y() > camera.height)
+      skeleton->confidence[j] = 0;
+  }
+}
+
 }  // namespace reenact::capture

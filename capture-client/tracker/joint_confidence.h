@@ -8,6 +8,7 @@
 
 #include "capture-client/tracker/articulated_body.h"
 #include "capture-client/tracker/body_fit.h"
+#include "common/geometry/pinhole_camera.h"
 #include "common/skeleton/skeleton.h"
 
 namespace reenact::capture {
@@ -18,6 +19,11 @@ struct JointConfidenceOptions {
 
   void Check() const;
 };
+
+// Joints outside the camera's image (or not in front of it) are not seen: confidence 0
+// (missing). A body partly out of view (an upper body close up, a hand raised out of the
+// frame) reports what the scene shows instead of inventing the rest.
+void MarkJointsOutOfView(const PinholeCamera& camera, Skeleton* skeleton);
 
 // The fit's skeleton with its confidences; inlier_m: what counts as support.
 Skeleton WithJointConfidence(const ArticulatedBody& body, const BodyFitResult& fit,

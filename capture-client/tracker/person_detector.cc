@@ -22,6 +22,7 @@ void PersonDetectOptions::Check() const {
                 "need 0 <= min_area_m2 < max_area_m2");
   REENACT_CHECK(max_top_width_m > 0, "max_top_width_m must be > 0");
   REENACT_CHECK(max_jump_m > 0, "max_jump_m must be > 0");
+  REENACT_CHECK(assumed_stature_m > 0, "assumed_stature_m must be > 0");
   REENACT_CHECK(min_region_pixels >= 1, "min_region_pixels must be >= 1");
   REENACT_CHECK(merge_step_m >= 0 && tracking_merge_step_m >= 0,
                 "merge_step_m and tracking_merge_step_m must be >= 0");
@@ -34,10 +35,20 @@ std::string_view DetectStatusName(DetectStatus status) {
       return "ok";
     case DetectStatus::kNoDepth:
       return "no_depth";
-    case DetectStatus::kNoFloor:
-      return "no_floor";
     case DetectStatus::kNoPerson:
       return "no_person";
+  }
+  return "unknown";
+}
+
+std::string_view FloorSourceName(FloorSource source) {
+  switch (source) {
+    case FloorSource::kSeen:
+      return "seen";
+    case FloorSource::kPersonLowest:
+      return "person_lowest";
+    case FloorSource::kAssumedStature:
+      return "assumed_stature";
   }
   return "unknown";
 }
@@ -101,21 +112,58 @@ PersonBlob PersonDetector::Detect(const ImageDepthMm& depth,
   if (world_from_sensor && world_up && world_up->allFinite() && world_up->norm() > 0)
     up = (world_from_sensor->linear().transpose() * *world_up).normalized();
   blob.floor_in_sensor = UpdateFloor(depth, up, world_from_sensor, &blob.floor_refitted);
-  if (!blob.floor_in_sensor) {
-    blob.status = DetectStatus::kNoFloor;
-    return blob;
-  }
-  GridPoints grid = MarkCandidates(blob);
+  const bool floor_seen = blob.floor_in_sensor.has_value();
+  // Without a floor, heights are measured from a plane below every reading in range until the
+  // person's own floor is set.
+  const Plane3 floor =
+      floor_seen ? *blob.floor_in_sensor : Plane3{up, -(options_.max_depth_m + 1)};
+  GridPoints grid = MarkCandidates(blob, floor, floor_seen);
   std::vector<Region> regions = GrowRegions(grid);
   const std::vector<int> roots = MergeRegions(
       grid, previous_centroid ? options_.tracking_merge_step_m : options_.merge_step_m, &regions);
-  const int best = ChooseRegion(grid, regions, roots, previous_centroid, &blob);
+  const int best = ChooseRegion(grid, regions, roots, previous_centroid, floor_seen, &blob);
   if (best < 0) {
     blob.status = DetectStatus::kNoPerson;
     return blob;
   }
+  if (!floor_seen)
+    blob.floor_in_sensor =
+        PersonFloor(grid, best, up, world_from_sensor, &regions[best], &blob.floor_source);
   FillBlob(grid, regions[best], best, &blob);
   return blob;
+}
+
+Plane3 PersonDetector::PersonFloor(const GridPoints& grid, int id, const Eigen::Vector3d& up,
+                                   const std::optional<Eigen::Isometry3d>& world_from_sensor,
+                                   Region* r, FloorSource* source) {
+  if (person_floor_ && person_floor_->in_world != world_from_sensor.has_value())
+    person_floor_.reset();
+  std::optional<Plane3> known;
+  if (person_floor_)
+    known = person_floor_->in_world ? person_floor_->plane.Transformed(world_from_sensor->inverse())
+                                    : person_floor_->plane;
+  // The region's lowest point along up.
+  Eigen::Vector3d lowest = Eigen::Vector3d::Zero();
+  double lowest_up = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < label_.size(); ++i)
+    if (label_[i] == id && up.dot(grid.point[i]) < lowest_up)
+      lowest_up = up.dot(grid.point[i]), lowest = grid.point[i];
+  Plane3 floor;
+  *source = FloorSource::kPersonLowest;
+  if (!r->touches_bottom && (!known || known->SignedDistance(lowest) < 0)) {
+    floor = Plane3{up, lowest_up};
+    person_floor_ = CachedFloor{world_from_sensor ? floor.Transformed(*world_from_sensor) : floor,
+                                world_from_sensor.has_value(), 1};
+  } else if (known) {
+    floor = *known;
+  } else {
+    *source = FloorSource::kAssumedStature;
+    floor = Plane3{up, grid.floor.offset + r->top - options_.assumed_stature_m};
+  }
+  const double shift = floor.offset - grid.floor.offset;
+  r->top -= shift;
+  r->bottom -= shift;
+  return floor;
 }
 
 bool PersonDetector::ReadDepthGrid(const ImageDepthMm& depth, PersonBlob* blob) const {
@@ -136,8 +184,8 @@ bool PersonDetector::ReadDepthGrid(const ImageDepthMm& depth, PersonBlob* blob) 
   return any;
 }
 
-PersonDetector::GridPoints PersonDetector::MarkCandidates(const PersonBlob& blob) {
-  const Plane3 floor = *blob.floor_in_sensor;
+PersonDetector::GridPoints PersonDetector::MarkCandidates(const PersonBlob& blob,
+                                                          const Plane3& floor, bool floor_seen) {
   const PersonSegmentOptions& so = options_.segment;
   GridPoints grid;
   grid.width = blob.depth_m.width;
@@ -156,8 +204,8 @@ PersonDetector::GridPoints PersonDetector::MarkCandidates(const PersonBlob& blob
       const int i = y * gw + x;
       grid.point[i] = rays_.Point(x * g, y * g, z);
       grid.height_m[i] = floor.SignedDistance(grid.point[i]);
-      if (OnOrUnderFloor(floor, grid.point[i], so.floor_clearance) ||
-          grid.height_m[i] > options_.max_height_m)
+      if (floor_seen && (OnOrUnderFloor(floor, grid.point[i], so.floor_clearance) ||
+                         grid.height_m[i] > options_.max_height_m))
         continue;
       label_[i] = -2;
     }
@@ -264,7 +312,7 @@ std::vector<int> PersonDetector::MergeRegions(const GridPoints& grid, double mer
 int PersonDetector::ChooseRegion(const GridPoints& grid, const std::vector<Region>& regions,
                                  const std::vector<int>& parent,
                                  const std::optional<Eigen::Vector3d>& previous_centroid,
-                                 PersonBlob* blob) const {
+                                 bool floor_seen, PersonBlob* blob) const {
   // Width of each region's top 12 cm (the head, or raised hands).
   std::vector<double> tmin1(regions.size(), 1e9), tmax1(regions.size(), -1e9),
       tmin2(regions.size(), 1e9), tmax2(regions.size(), -1e9);
@@ -282,8 +330,11 @@ int PersonDetector::ChooseRegion(const GridPoints& grid, const std::vector<Regio
     if (parent[id] != static_cast<int>(id) || r.pixels < options_.min_region_pixels) continue;
     const double extent = std::hypot(r.max1 - r.min1, r.max2 - r.min2);
     const double top_width = std::hypot(tmax1[id] - tmin1[id], tmax2[id] - tmin2[id]);
-    const bool plausible = r.top >= options_.min_top_m &&
-                           (r.bottom <= options_.max_bottom_m || r.touches_bottom) &&
+    const bool standing =
+        floor_seen ? r.top >= options_.min_top_m &&
+                         (r.bottom <= options_.max_bottom_m || r.touches_bottom)
+                   : r.top - r.bottom >= options_.min_top_m && r.top - r.bottom <= options_.max_height_m;
+    const bool plausible = standing &&
                            extent <= options_.max_extent_m && r.area >= options_.min_area_m2 &&
                            r.area <= options_.max_area_m2 &&
                            (previous_centroid || top_width <= options_.max_top_width_m);
@@ -308,6 +359,7 @@ void PersonDetector::FillBlob(const GridPoints& grid, const Region& r, int id,
   blob->top_height_m = r.top;
   blob->bottom_height_m = r.bottom;
   blob->area_m2 = r.area;
+  blob->touches_bottom = r.touches_bottom;
   blob->points.reserve(r.pixels);
   blob->pixels.reserve(r.pixels);
   for (size_t i = 0; i < label_.size(); ++i) {

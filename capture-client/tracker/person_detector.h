@@ -21,6 +21,14 @@
 //     wide in its top 12 cm: a head, unlike a cabinet), the one nearest the previous
 //     person's centroid when given (within max_jump_m; the top-width test is then left out,
 //     as raised arms widen the top), else the largest.
+// Without a floor in view (a close-up, a background removed by the sensor's software, a
+// sensor aimed level above the floor), steps 2-5 run on every reading in range, the heights
+// measured along the up direction above, and a region is human-sized by its own vertical span
+// (at least min_top_m, at most max_height_m) instead of its height above the floor. The
+// chosen person then stands on a floor of its own (PersonBlob::floor_source): the lowest of
+// its lowest points seen so far while it was whole in the image (feet), cached as the floor
+// is; or, while the region reaches the image's lower edge and no such floor is known (legs
+// out of view), a floor assumed_stature_m below its top.
 // Frames: points in the sensor frame (OpenCV axes, metres). Not thread-safe (floor cache).
 
 #include <Eigen/Core>
@@ -56,6 +64,9 @@ struct PersonDetectOptions {
   // points near the body it predicts, so a larger gap can be bridged (a hand raised behind the
   // head, 50-60 cm deeper than the face).
   double tracking_merge_step_m = 0.8;
+  // A person's standing height taken where the floor is not in view and its feet have not
+  // been seen (an upper body close up), > 0: the average adult's.
+  double assumed_stature_m = 1.7;
   // Floor fit and clearance, region-growing depth step: as the person segmenter's.
   PersonSegmentOptions segment;
 
@@ -65,10 +76,17 @@ struct PersonDetectOptions {
 enum class DetectStatus {
   kOk = 0,
   kNoDepth,   // no reading in range
-  kNoFloor,   // no floor plane found: nothing is detected (the floor separates the feet)
   kNoPerson,  // no human-sized region
 };
 std::string_view DetectStatusName(DetectStatus status);
+
+// Where PersonBlob::floor_in_sensor comes from.
+enum class FloorSource {
+  kSeen = 0,        // a plane fitted to the floor's readings
+  kPersonLowest,    // no floor in view: the person's lowest point (its feet)
+  kAssumedStature,  // no floor and no feet in view: assumed_stature_m below the person's top
+};
+std::string_view FloorSourceName(FloorSource source);
 
 struct PersonBlob {
   DetectStatus status = DetectStatus::kNoDepth;
@@ -82,7 +100,9 @@ struct PersonBlob {
   double area_m2 = 0;
   int plausible_regions = 0;  // human-sized regions seen (2 or more: the nearest/largest won)
   std::optional<Plane3> floor_in_sensor;  // normal pointing up
+  FloorSource floor_source = FloorSource::kSeen;
   bool floor_refitted = false;
+  bool touches_bottom = false;  // the person reaches the image's lower edge (legs cut off)
 };
 
 class PersonDetector {
@@ -99,7 +119,7 @@ class PersonDetector {
                     const std::optional<Eigen::Vector3d>& world_up = std::nullopt,
                     const std::optional<Eigen::Vector3d>& previous_centroid = std::nullopt);
 
-  void ResetFloor() { floor_.reset(); }
+  void ResetFloor() { floor_.reset(), person_floor_.reset(); }
   const PersonDetectOptions& options() const { return options_; }
   const PinholeCamera& camera() const { return camera_; }
   const PixelRays& rays() const { return rays_; }  // camera()'s pixel rays
@@ -132,8 +152,9 @@ class PersonDetector {
   };
   // The grid's readings within range into blob (size, depth); false when there are none.
   bool ReadDepthGrid(const ImageDepthMm& depth, PersonBlob* blob) const;
-  // Points and heights of the grid; label_ marks the candidates (above the floor, not too high).
-  GridPoints MarkCandidates(const PersonBlob& blob);
+  // Points and heights of the grid above `floor`; label_ marks the candidates (above the
+  // floor and not too high when floor_seen, every reading otherwise).
+  GridPoints MarkCandidates(const PersonBlob& blob, const Plane3& floor, bool floor_seen);
   // Regions grown across depth steps of the segmentation's depth_step (label_ set to them).
   std::vector<Region> GrowRegions(const GridPoints& grid);
   // Touching regions within merge_step of each other, smallest gap first.
@@ -145,7 +166,13 @@ class PersonDetector {
   // The plausible person region (the largest, or the nearest to previous_centroid), -1: none.
   int ChooseRegion(const GridPoints& grid, const std::vector<Region>& regions,
                    const std::vector<int>& parent,
-                   const std::optional<Eigen::Vector3d>& previous_centroid, PersonBlob* blob) const;
+                   const std::optional<Eigen::Vector3d>& previous_centroid, bool floor_seen,
+                   PersonBlob* blob) const;
+  // Without a floor in view: the person's own floor for the chosen region (class comment);
+  // moves r's heights onto it.
+  Plane3 PersonFloor(const GridPoints& grid, int id, const Eigen::Vector3d& up,
+                     const std::optional<Eigen::Isometry3d>& world_from_sensor, Region* r,
+                     FloorSource* source);
   void FillBlob(const GridPoints& grid, const Region& r, int id, PersonBlob* blob) const;
 
   struct CachedFloor {
@@ -158,6 +185,7 @@ class PersonDetector {
   double depth_scale_m_;
   PersonDetectOptions options_;
   std::optional<CachedFloor> floor_;
+  std::optional<CachedFloor> person_floor_;  // the lowest feet seen without a floor in view
   std::vector<int> label_, queue_;
 };
 

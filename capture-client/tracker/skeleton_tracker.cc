@@ -87,7 +87,7 @@ std::optional<BodyFitResult> SkeletonTracker::StartTrackOnBlob(const PersonBlob&
   const BodyFitter fitter(*body_, method_.fitter);
   std::optional<StartedFit> s =
       StartTrack(fitter, good_, blob, obs, method_.calibration, method_.start,
-                 has_previous_ ? std::optional(pose_) : std::nullopt, state_ == TrackState::kLost);
+                 has_previous_ ? std::optional(pose_) : std::nullopt);
   *from_extremities = s && s->from_extremities;
   if (!s) return std::nullopt;
   for (const auto& step : method_.steps) step->OnTrackStart(s->start);
@@ -160,6 +160,7 @@ TrackFrameResult SkeletonTracker::WaitForCalibration(const PersonBlob& blob,
   const double inlier_m =
       c.from_calibration_pose ? method_.calibration.fit.inlier_m : method_.fitter.fit.inlier_m;
   out.skeleton = WithJointConfidence(*body_, c.fit, obs(), inlier_m, true, method_.confidence);
+  MarkJointsOutOfView(camera_, &*out.skeleton);
   calibration_ = std::move(c);
   out.state = state_;
   return out;
@@ -208,6 +209,7 @@ TrackFrameResult SkeletonTracker::Recover(const PersonBlob& blob, BodyObservatio
   out.outlier_share = r->outlier_share;
   out.skeleton =
       WithJointConfidence(*body_, *r, obs, method_.fitter.fit.inlier_m, true, method_.confidence);
+  MarkJointsOutOfView(camera_, &*out.skeleton);
   out.state = state_;
   last_fit_ = LastFit{std::move(obs), std::move(*r)};
   return out;
@@ -245,6 +247,7 @@ TrackFrameResult SkeletonTracker::TrackFrame(
   }
   out.skeleton = WithJointConfidence(*body_, fit, obs, method_.fitter.fit.inlier_m, out.good_fit,
                                      method_.confidence);
+  MarkJointsOutOfView(camera_, &*out.skeleton);
   out.state = state_;
   last_fit_ = LastFit{std::move(obs), std::move(fit)};
   return out;

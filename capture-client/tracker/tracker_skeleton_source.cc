@@ -12,10 +12,9 @@ std::string TrackerSourceStats::Describe() const {
     const int people = detect[static_cast<int>(DetectStatus::kOk)];
     if (people == 0) {
       s << "no person found (no depth: " << detect[static_cast<int>(DetectStatus::kNoDepth)]
-        << ", no floor in view: " << detect[static_cast<int>(DetectStatus::kNoFloor)]
-        << ", nothing person-sized above the floor: "
-        << detect[static_cast<int>(DetectStatus::kNoPerson)]
-        << " frames); the subject must stand on a visible floor, 0.4-6 m from the sensor";
+        << ", nothing person-sized: " << detect[static_cast<int>(DetectStatus::kNoPerson)]
+        << " frames); the subject must be 0.4-6 m from the sensor, its head and shoulders in "
+           "view, apart from walls and furniture by a step in depth";
     } else {
       s << "a person in " << people
         << " frames, but never in the calibration pose (facing the sensor, arms held out to "

@@ -30,7 +30,7 @@ struct TrackerSourceStats {
   // the tracker learn and leave out the static scene beside the subject (static_scene_voxels.h).
   int posed = 0;
   // Frames per detection outcome (Index: DetectStatus).
-  std::array<int, 4> detect{};
+  std::array<int, 3> detect{};
 
   // One line for people: what was tracked, or why nothing was (and what to do).
   std::string Describe() const;

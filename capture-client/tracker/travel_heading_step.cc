@@ -51,7 +51,7 @@ std::vector<Candidate> TravelHeadingStep::Propose(const StepFrame& frame,
   cooldown_ = options_.cooldown_frames;
   bool unused = false;
   std::optional<BodyFitResult> best =
-      BestUprightFit(frame.fitter, frame.blob, frame.observation, {travel}, nullptr, 0, &unused);
+      BestUprightFit(frame.fitter, frame.blob, frame.observation, {travel}, nullptr, 0, 0, &unused);
   BodyFitResult turned =
       frame.fitter.FitFromFar(TurnedTo(current.pose, up, travel), frame.observation);
   if (!best || turned.cost < best->cost) best = std::move(turned);

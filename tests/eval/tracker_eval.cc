@@ -16,6 +16,7 @@
 #include "synthetic/synthetic_scene.h"
 #include "tests/eval/body_heading.h"
 #include "tests/eval/calibration_aligned_error.h"
+#include "tests/eval/in_view_error.h"
 #include "tests/eval/quality_cli.h"
 #include "tests/eval/tracker_experiment.h"
 
@@ -161,6 +162,7 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
   row.subsample = subsample;
   row.seed = static_cast<int>(scene.seed());
   std::vector<double> errors, aligned_errors, floor_posed_errors, floor_errors, headings, ms, cpu;
+  InViewErrorTable in_view;
   int floor_cheaper = 0;  // floor frames whose fit from the truth cost less than the track's
   std::optional<CalibrationAlignment> alignment;
   const Eigen::Vector3d world_up = scene.world_up();
@@ -186,8 +188,9 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
       so.initial_world_from_sensor = world_from_sensor;
       slam.emplace(camera, 0.001, so);
     }
-    const std::optional<Eigen::Isometry3d> given =
-        slam ? slam->PredictedWorldFromSensor() : std::optional(world_from_sensor);
+    const std::optional<Eigen::Isometry3d> given = o.withhold_sensor_pose ? std::nullopt
+                                                   : slam ? slam->PredictedWorldFromSensor()
+                                                          : std::optional(world_from_sensor);
     const double cpu0 = ProcessCpuMs();
     const auto t0 = std::chrono::steady_clock::now();
     const capture::TrackFrameResult r =
@@ -227,6 +230,7 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
       ++row.tracked;
       err = Mpjpe(*r.skeleton, truth);
       errors.push_back(err);
+      in_view.Add(*r.skeleton, truth, camera);
       if (r.calibrated)
         alignment = tracker.calibration()->from_calibration_pose
                         ? CalibrationAlignment::FromCalibrationFrame(*r.skeleton, truth)
@@ -266,6 +270,10 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
   row.tracked_rate = row.frames ? static_cast<double>(row.tracked) / row.frames : 0;
   row.mpjpe_cm = 100 * Mean(errors);
   row.p90_cm = errors.empty() ? 0 : 100 * Percentile(errors, 0.9);
+  const InViewErrorStats seen = in_view.Stats();
+  row.in_view_mpjpe_cm = seen.in_view_mpjpe_cm;
+  row.in_view_reported = seen.in_view_reported_share;
+  row.invented = seen.invented_share;
   if (!aligned_errors.empty()) row.aligned_mpjpe_cm = 100 * Mean(aligned_errors);
   if (!floor_errors.empty()) {
     row.floor_posed_mpjpe_cm = 100 * Mean(floor_posed_errors);
@@ -296,6 +304,8 @@ Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& o) {
       return MakeError("usage", "unknown variant '" + v + "' (" + VariantList() + ")");
   if (o.seeds.empty() || *std::min_element(o.seeds.begin(), o.seeds.end()) < 1)
     return MakeError("usage", "seeds: give at least one, each at least 1");
+  if (o.slam_poses && o.withhold_sensor_pose)
+    return MakeError("usage", "sensor pose: SLAM's and none at once; choose one");
   TrackerEvalRun run;
   for (const std::string& name : o.scenarios)
     for (const int seed : o.seeds) {
@@ -394,6 +404,9 @@ proto::Report TrackerReport(const TrackerEvalRun& run) {
         .Add("tracked_rate", r.tracked_rate)
         .Add("mpjpe_cm", r.mpjpe_cm)
         .Add("p90_cm", r.p90_cm)
+        .Add("in_view_mpjpe_cm", r.in_view_mpjpe_cm)
+        .Add("in_view_reported", r.in_view_reported)
+        .Add("invented", r.invented)
         .Add("heading_deg", r.heading_deg)
         .Add("reversed_rate", r.reversed_rate)
         .Add("calib_frame", static_cast<long long>(r.calibration_frame))
@@ -614,9 +627,10 @@ Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& cl) {
       *value = *on;
     }
   if (auto pose = cl.Get("sensor-pose")) {
-    if (*pose != "truth" && *pose != "slam")
-      return MakeError("usage", "--sensor-pose must be truth or slam, got '" + *pose + "'");
+    if (*pose != "truth" && *pose != "slam" && *pose != "none")
+      return MakeError("usage", "--sensor-pose must be truth, slam or none, got '" + *pose + "'");
     o.slam_poses = *pose == "slam";
+    o.withhold_sensor_pose = *pose == "none";
   }
   if (auto text = cl.Get("seeds")) {
     auto list = ParseCounts("seeds", *text);

@@ -5,7 +5,7 @@
 //   reenact-eval tracker [--scenario S[,S...]] [--variants V[,V...]] [--iterations N[,N...]]
 //                        [--subsample K[,K...]] [--body FILE.glb|procedural]
 //                        [--turn-starts DEG] [--without PART[,PART...]] [--noise on|off]
-//                        [--sensor-pose truth|slam] [--timestamps on|off] [--floor on|off]
+//                        [--sensor-pose truth|slam|none] [--timestamps on|off] [--floor on|off]
 //                        [--frames on|off] [--seeds N[,N...]] [--json FILE]
 //
 // --seeds: the scene's seeds, each a run of its own (default 1): the seed draws the depth
@@ -21,12 +21,13 @@
 // --timestamps on|off: each frame's time given to the tracker (default on), which scales its
 // prediction by the gap since the last frame (SkeletonTrackerOptions::max_gap_ratio); off:
 // every frame taken as one interval after the last, as before timestamps were passed.
-// --sensor-pose truth|slam: the sensor pose (and the world's up) the tracker is given with each
-// frame: the scene's true one (default), or the one the recorder gives it for a sensor without
-// poses (clip_recorder.h's FramePoseHint): RGB-D SLAM's constant-velocity prediction for the
-// frame (slam/rgbd_slam.h; none until SLAM has founded its map on the first frame), SLAM then
-// tracking the frame's colour and depth with the rendered person mask (the recorder's is
-// segmented from the tracked skeleton), its world anchored at the first frame's true pose.
+// --sensor-pose truth|slam|none: the sensor pose (and the world's up) the tracker is given with
+// each frame: the scene's true one (default), or the one the recorder gives it for a sensor
+// without poses (clip_recorder.h's FramePoseHint): RGB-D SLAM's constant-velocity prediction for
+// the frame (slam/rgbd_slam.h; none until SLAM has founded its map on the first frame), SLAM
+// then tracking the frame's colour and depth with the rendered person mask (the recorder's is
+// segmented from the tracked skeleton), its world anchored at the first frame's true pose; or
+// none: neither a pose nor the world's up on any frame (a real camera recorded without SLAM).
 // ms_per_frame stays the tracker's alone.
 // --floor on|off: the body model's floor beside the track (default off; one fit more a frame,
 // outside the timing): on every tracked frame but the track's start (its calibration), the
@@ -67,12 +68,22 @@
 //           2 or 3 frames dropped with probabilities 0.6, 0.25, 0.1 and 0.05, drawn from the
 //           seed (1.6 frame intervals between the frames seen on average)
 // Figures per row: frames, tracked_rate (frames with a skeleton), mpjpe_cm (mean over the
-// tracked frames of the mean 16-joint error), p90_cm (90th percentile of the per-frame
-// errors), heading_deg (median over the tracked frames of the heading error, body_heading.h:
-// how far the tracked body is turned about the vertical from the truth's) and reversed_rate
-// (the share of those frames with a heading error above 90 degrees: front and back
-// confused), calibration frame, losses and recoveries, aligned_mpjpe_cm (the mean 16-joint
-// error over the tracked frames after the calibration frame, each joint moved by the offset
+// tracked frames of the mean 16-joint error, every joint whatever its confidence), p90_cm
+// (90th percentile of the per-frame errors); over the tracked frames, split by what the sensor
+// shows (in_view_error.h: a truth joint is in view when it lies ahead of the sensor and projects
+// inside the image; reported: confidence above 0): in_view_mpjpe_cm (mean over the frames of
+// the mean error of the in-view joints the tracker reported), in_view_reported (the share of
+// in-view joints reported) and invented (the share of out-of-view joints reported anyway, which
+// should be flagged not seen). Where every joint stays in view (a row without partly_outside
+// frames) and is reported, in_view_mpjpe_cm equals mpjpe_cm, the goal's figure. Where joints
+// leave the image (upper-body-turn, whose knees and feet are never in view; the near
+// variant) the goal's figure is in_view_mpjpe_cm, with in_view_reported near 1 and invented
+// near 0: mpjpe_cm there also counts the places given to joints no frame shows. Then
+// heading_deg (median over the tracked frames of the heading error, body_heading.h: how far
+// the tracked body is turned about the vertical from the truth's) and reversed_rate (the share
+// of those frames with a heading error above 90 degrees: front and back confused),
+// calibration frame, losses and recoveries, aligned_mpjpe_cm (the mean 16-joint error over the
+// tracked frames after the calibration frame, each joint moved by the offset
 // between the track and the truth on the calibration frame, in the tracked segment's frame:
 // calibration_aligned_error.h; only for a track started from the calibration pose, each
 // calibration from that pose taking new offsets; it separates the tracking error from a
@@ -140,8 +151,10 @@ struct TrackerEvalOptions {
   std::vector<int> seeds{1};  // each >= 1: the scene's seed, one run per seed
   int max_frames = -1;        // frames per run at most (-1: all); for tests
   // The sensor pose the tracker is given: the truth, or (--sensor-pose slam) the RGB-D SLAM's
-  // prediction as the recorder gives it for a sensor without poses.
+  // prediction as the recorder gives it for a sensor without poses, or (--sensor-pose none,
+  // withhold_sensor_pose) none and no world up. At most one of the two set.
   bool slam_poses = false;
+  bool withhold_sensor_pose = false;
   // Each frame's timestamp given to the tracker (SkeletonTrackerOptions::max_gap_ratio).
   bool timestamps = true;
   // The model's floor on every tracked frame (--floor; see the header comment).
@@ -157,7 +170,8 @@ struct TrackerEvalRow {
   int iterations = 0, subsample = 0, seed = 1;
   int frames = 0, tracked = 0;
   double tracked_rate = 0, mpjpe_cm = 0, p90_cm = 0;
-  double heading_deg = 0, reversed_rate = 0;  // see the header comment
+  double in_view_mpjpe_cm = 0, in_view_reported = 0, invented = 0;  // see the header comment
+  double heading_deg = 0, reversed_rate = 0;                        // see the header comment
   int calibration_frame = -1, losses = 0, recoveries = 0;
   // See the header comment; nullopt where the track never started from the calibration pose.
   std::optional<double> aligned_mpjpe_cm;
@@ -239,7 +253,8 @@ Expected<TrackerEvalRun> RunTrackerEval(const TrackerEvalOptions& options);
 
 // Tables and --json rows (command "tracker"), each opening with the setting (scenario,
 // variant, iterations, subsample, seed): the main table (n, tracked_rate, mpjpe_cm, p90_cm,
-// calib_frame, losses, recoveries, ms_per_frame, cpu_ms_per_frame) and the table "cases"
+// in_view_mpjpe_cm, in_view_reported, invented, calib_frame, losses, recoveries, ms_per_frame,
+// cpu_ms_per_frame) and the table "cases"
 // (case, n, tracked_rate, mpjpe_cm) and the table "joints" (joint, n, mean_cm, bias_x_cm,
 // bias_y_cm, bias_z_cm, bias_cm, spread_cm) and the table "confidence" (confidence, n, share,
 // mean_cm, gross_share) and the table "limbs" (limb, in_view_n, hidden_n, in_view_end_cm,
@@ -259,7 +274,8 @@ std::set<std::string> TrackerFlags();
 // --body procedural: every scenario on the procedural body (body_path empty, body_for_all).
 // Errors (code "usage", naming the flag): empty lists or names, numbers that are not whole
 // numbers >= 1, an unknown variant, an unknown --without part, --turn-starts other than one
-// number from 0 to 89, --noise other than on or off, --seeds
+// number from 0 to 89, --noise other than on or off, --sensor-pose other than truth, slam or
+// none, --seeds
 // other than whole numbers from 1 to 1000 without repeats; ("io") an unwritable --json.
 Expected<TrackerCommand> ParseTrackerCommand(const CommandLine& command_line);
 

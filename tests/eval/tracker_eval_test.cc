@@ -75,7 +75,11 @@ TEST(TrackerCli, Flags) {
   EXPECT_EQ(Parse({"--variants", "drops,normal"})->options.variants,
             (std::vector<std::string>{"drops", "normal"}));
   EXPECT_TRUE(Parse({"--sensor-pose", "slam"})->options.slam_poses);
+  EXPECT_FALSE(Parse({"--sensor-pose", "slam"})->options.withhold_sensor_pose);
   EXPECT_FALSE(Parse({"--sensor-pose", "truth"})->options.slam_poses);
+  EXPECT_FALSE(Parse({"--sensor-pose", "truth"})->options.withhold_sensor_pose);
+  EXPECT_TRUE(Parse({"--sensor-pose", "none"})->options.withhold_sensor_pose);
+  EXPECT_FALSE(Parse({"--sensor-pose", "none"})->options.slam_poses);
   EXPECT_EQ(Parse({"--seeds", "3,1,2"})->options.seeds, (std::vector<int>{3, 1, 2}));
 }
 
@@ -109,7 +113,7 @@ TEST(TrackerCli, BadInputIsRefused) {
   ExpectUsage({"--turn-starts", "-5"}, "--turn-starts");
   ExpectUsage({"--turn-starts", "12.5"}, "--turn-starts");
   ExpectUsage({"--timestamps", "yes"}, "--timestamps must be on or off");
-  ExpectUsage({"--sensor-pose", "gt"}, "--sensor-pose must be truth or slam");
+  ExpectUsage({"--sensor-pose", "gt"}, "--sensor-pose must be truth, slam or none");
   ExpectUsage({"--seeds", "0"}, "--seeds");
   ExpectUsage({"--seeds", "1,x"}, "--seeds");
   ExpectUsage({"--seeds", ""}, "--seeds");
@@ -133,6 +137,14 @@ TEST(TrackerEval, NoSeedIsAUsageError) {
   EXPECT_EQ(RunTrackerEval(o).error().code, "usage");
   o.seeds = {0};
   EXPECT_EQ(RunTrackerEval(o).error().code, "usage");
+}
+
+TEST(TrackerEval, SlamPosesAndNoPoseExcludeEachOther) {
+  TrackerEvalOptions o;
+  o.slam_poses = o.withhold_sensor_pose = true;
+  const auto run = RunTrackerEval(o);
+  ASSERT_FALSE(run.ok());
+  EXPECT_EQ(run.error().code, "usage");
 }
 
 TEST(TrackerEval, SeedSummaryAveragesEachSettingOverItsSeeds) {
@@ -223,6 +235,13 @@ TEST(TrackerEval, ShortRunTracksEveryFrameAndWritesTheReport) {
     EXPECT_LT(row.torso_breadth_cm, 40) << row.variant;
     EXPECT_GT(row.ms_per_frame, 0);
   }
+  // Normal: the whole subject in view, every joint reported (the tracker reports all 16 of a
+  // tracked frame), so the in-view error is the 16-joint error and nothing is invented.
+  const TrackerEvalRow& normal = run->rows[0];
+  ASSERT_EQ(normal.variant, "normal");
+  EXPECT_DOUBLE_EQ(normal.in_view_reported, 1.0);
+  EXPECT_DOUBLE_EQ(normal.invented, 0.0);
+  EXPECT_NEAR(normal.in_view_mpjpe_cm, normal.mpjpe_cm, 1e-9);
   // The near variant cuts the subject off at the image's lower edge.
   bool partly_outside = false;
   for (const TrackerCaseRow& c : run->cases)
@@ -236,10 +255,10 @@ TEST(TrackerEval, ShortRunTracksEveryFrameAndWritesTheReport) {
   text << std::ifstream(path).rdbuf();
   fs::remove(path);
   for (const char* field :
-       {"\"command\": \"tracker\"", "\"scenario\": \"turn-and-kick\"",
-        "\"mpjpe_cm\":", "\"aligned_mpjpe_cm\":", "\"tracked_rate\":", "\"heading_deg\":",
-        "\"reversed_rate\":", "\"torso_depth_cm\":", "\"torso_breadth_cm\":", "\"ms_per_frame\":",
-        "\"case\": \"partly_outside\""})
+       {"\"command\": \"tracker\"", "\"scenario\": \"turn-and-kick\"", "\"mpjpe_cm\":",
+        "\"aligned_mpjpe_cm\":", "\"tracked_rate\":", "\"heading_deg\":", "\"in_view_mpjpe_cm\":",
+        "\"in_view_reported\":", "\"invented\":", "\"reversed_rate\":", "\"torso_depth_cm\":",
+        "\"torso_breadth_cm\":", "\"ms_per_frame\":", "\"case\": \"partly_outside\""})
     EXPECT_NE(text.str().find(field), std::string::npos) << field << " in " << text.str();
   // The joints table: every joint of every row, over the tracked frames.
   ASSERT_EQ(run->joints.size(), 2u * kJointCount);
@@ -571,6 +590,35 @@ TEST(TrackerEval, ATurnedStartDoesNotSwingAnArmInViewBehindTheHead) {
   // data, 1.9 (bound 3).
   EXPECT_GT(NearWalkRightHandCm(false, 120), 5.0);
   EXPECT_LT(NearWalkRightHandCm(true, 120), 3.0);
+}
+
+TEST(TrackerEval, TheCloseUpRunsWithAndWithoutTheSensorPose) {
+  // upper-body-turn: the knees and feet never in view, so every frame is partly outside;
+  // the in-view figures are shares (or 0 where nothing was tracked). Given no sensor pose
+  // (--sensor-pose none) the run goes through the same frames.
+  TrackerEvalOptions o;
+  o.scenarios = {"upper-body-turn"};
+  o.max_frames = 8;
+  for (const bool withhold : {false, true}) {
+    o.withhold_sensor_pose = withhold;
+    const auto run = RunTrackerEval(o);
+    ASSERT_TRUE(run.ok()) << run.error().message;
+    ASSERT_EQ(run->rows.size(), 1u);
+    const TrackerEvalRow& row = run->rows[0];
+    EXPECT_EQ(row.frames, 8) << withhold;
+    int partly_outside = -1;
+    for (const TrackerCaseRow& c : run->cases)
+      if (c.hard_case == "partly_outside") partly_outside = c.frames;
+    EXPECT_EQ(partly_outside, 8) << withhold;
+    for (const double share : {row.in_view_reported, row.invented}) {
+      EXPECT_GE(share, 0.0) << withhold;
+      EXPECT_LE(share, 1.0) << withhold;
+    }
+    EXPECT_GE(row.in_view_mpjpe_cm, 0.0) << withhold;
+    if (row.tracked == 0) {
+      EXPECT_EQ(row.in_view_reported, 0.0) << withhold;
+    }
+  }
 }
 
 TEST(TrackerEval, BvhPlaysOnTheProceduralBody) {

@@ -160,9 +160,10 @@ TEST(OpenFrameSource, UnknownKindListsTheAcceptedOnes) {
   }
   auto unknown = OpenFrameSource("kinect:0");
   EXPECT_NE(unknown.error().message.find("unknown source 'kinect:0'"), std::string::npos);
-  EXPECT_NE(unknown.error().message.find("oni:FILE, openni[:URI], tum:DIR or clip:DIR"),
+  EXPECT_NE(unknown.error().message.find("oni:FILE, openni[:URI], tum:DIR, rgbd:DIR or clip:DIR"),
             std::string::npos);
   EXPECT_EQ(OpenFrameSource("clip:").error().code, "usage");
+  EXPECT_EQ(OpenFrameSource("rgbd:").error().code, "usage");
   EXPECT_EQ(OpenFrameSource("tum:").error().code, "usage");
 }
 

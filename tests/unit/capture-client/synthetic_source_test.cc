@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -34,6 +35,29 @@ TEST(SyntheticSource, SpecChoosesTheBody) {
       OpenFrameSource("synthetic:calibration?body=procedural");
   ASSERT_TRUE(a.ok() && b.ok());
   EXPECT_EQ((*(*a)->Next())->color.data, (*(*b)->Next())->color.data);
+}
+
+TEST(SyntheticSource, SpecPlaysTheCloseUp) {
+  // upper-body-turn: 195 frames from a sensor 0.9 m in front of the subject; the subject's
+  // nearest pixel has a reading (beyond the 0.4 m minimum range), none farther than 1.2 m.
+  Expected<std::unique_ptr<FrameSource>> s = OpenFrameSource("synthetic:upper-body-turn");
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  EXPECT_EQ((*s)->info().frame_count, 195);
+  Expected<std::optional<SensorFrame>> f = (*s)->Next();
+  ASSERT_TRUE(f.ok() && f->has_value());
+  const SensorFrame& frame = **f;
+  ASSERT_TRUE(frame.world_from_sensor && frame.skeleton_in_world && frame.person_mask);
+  int subject = 0;
+  uint16_t nearest = 65535, farthest = 0;
+  for (size_t i = 0; i < frame.depth.data.size(); ++i) {
+    if (!frame.person_mask->data[i]) continue;
+    ++subject;
+    nearest = std::min(nearest, frame.depth.data[i]);
+    farthest = std::max(farthest, frame.depth.data[i]);
+  }
+  EXPECT_GT(subject, 640 * 480 / 10);
+  EXPECT_GE(nearest, 400);
+  EXPECT_LE(farthest, 1200);
 }
 
 TEST(SyntheticSource, BadOptionsAreUsageErrors) {

@@ -32,14 +32,101 @@ TEST(PersonDetector, AllZeroDepthIsNoDepthWithAnEmptyMask) {
   EXPECT_EQ(blob.mask.width, kCamera.width / 2);  // grid of 2 px
 }
 
-TEST(PersonDetector, AWallWithoutFloorIsNoFloor) {
+TEST(PersonDetector, AWallWithoutFloorIsNoPerson) {
   RayScene scene;
   scene.floor = false;
   scene.wall_z = 3;
   PersonDetector detector(kCamera, 0.001);
   const PersonBlob blob = detector.Detect(RenderDepth(scene, kCamera));
-  EXPECT_EQ(blob.status, DetectStatus::kNoFloor);
+  EXPECT_EQ(blob.status, DetectStatus::kNoPerson);  // 4.9 m wide at its top: no head
   EXPECT_TRUE(blob.points.empty());
+}
+
+// Without a floor in view (the background removed, as utd-mhad's Kinect SDK export has it).
+// The image's lower edge is at y / z = (480 - 255.3) / 516.5 = 0.435 below the axis: a person
+// at 4 m shows its feet (the floor y = 1.3 is at 0.33), one at 1.4 m is cut at 0.61 m (0.69 m
+// above the floor). Heights: along the image's up, -y (a level sensor).
+RayScene WithoutFloor(std::vector<Cylinder> people) {
+  RayScene scene;
+  scene.floor = false;
+  scene.wall_z = 0;
+  scene.people = std::move(people);
+  return scene;
+}
+
+double FloorY(const PersonBlob& blob) {  // where the blob's floor crosses the axis x = z = 0
+  return blob.floor_in_sensor->offset / blob.floor_in_sensor->normal.y();
+}
+
+TEST(PersonDetector, WithoutAFloorAPersonStandsOnItsFeet) {
+  PersonDetector detector(kCamera, 0.001);
+  const PersonBlob blob =
+      detector.Detect(RenderDepth(WithoutFloor({Cylinder{0.3, 4.0, 0.18, 1.7}}), kCamera));
+  ASSERT_EQ(blob.status, DetectStatus::kOk);
+  EXPECT_EQ(blob.floor_source, FloorSource::kPersonLowest);
+  EXPECT_FALSE(blob.touches_bottom);
+  ASSERT_TRUE(blob.floor_in_sensor);
+  EXPECT_NEAR(blob.floor_in_sensor->normal.y(), -1, 1e-9);
+  // The lowest grid row on the cylinder: within 2 px (1.5 cm at 3.8 m) of its foot.
+  EXPECT_NEAR(FloorY(blob), 1.3, 0.02);
+  EXPECT_NEAR(blob.top_height_m, 1.7, 0.03);
+  EXPECT_NEAR(blob.bottom_height_m, 0, 1e-9);
+}
+
+TEST(PersonDetector, WithoutAFloorOrFeetTheStatureIsAssumed) {
+  PersonDetector detector(kCamera, 0.001);
+  const PersonBlob blob =
+      detector.Detect(RenderDepth(WithoutFloor({Cylinder{0, 1.4, 0.18, 1.85}}), kCamera));
+  ASSERT_EQ(blob.status, DetectStatus::kOk);
+  EXPECT_TRUE(blob.touches_bottom);
+  EXPECT_EQ(blob.floor_source, FloorSource::kAssumedStature);
+  const double stature = PersonDetectOptions{}.assumed_stature_m;
+  EXPECT_NEAR(blob.top_height_m, stature, 1e-9);
+  // The top at y = 1.3 - 1.85; the floor assumed 1.7 m below it.
+  EXPECT_NEAR(FloorY(blob), 1.3 - 1.85 + stature, 0.02);
+}
+
+TEST(PersonDetector, FeetSeenOnceKeepTheirFloorWhenTheLegsLeaveTheImage) {
+  PersonDetector detector(kCamera, 0.001);
+  ASSERT_EQ(detector.Detect(RenderDepth(WithoutFloor({Cylinder{0, 4.0, 0.18, 1.85}}), kCamera))
+                .status,
+            DetectStatus::kOk);
+  const PersonBlob near =
+      detector.Detect(RenderDepth(WithoutFloor({Cylinder{0, 1.4, 0.18, 1.85}}), kCamera));
+  ASSERT_EQ(near.status, DetectStatus::kOk);
+  EXPECT_TRUE(near.touches_bottom);
+  EXPECT_EQ(near.floor_source, FloorSource::kPersonLowest);
+  EXPECT_NEAR(FloorY(near), 1.3, 0.02);
+  EXPECT_NEAR(near.top_height_m, 1.85, 0.03);
+  // Forgotten with the floor.
+  detector.ResetFloor();
+  EXPECT_EQ(detector.Detect(RenderDepth(WithoutFloor({Cylinder{0, 1.4, 0.18, 1.85}}), kCamera))
+                .floor_source,
+            FloorSource::kAssumedStature);
+}
+
+TEST(PersonDetector, FeetLiftedOffTheFloorKeepTheLowerFloor) {
+  PersonDetector detector(kCamera, 0.001);
+  ASSERT_EQ(detector.Detect(RenderDepth(WithoutFloor({Cylinder{0, 4.0, 0.18, 1.7}}), kCamera))
+                .status,
+            DetectStatus::kOk);
+  // A jump: the whole person 25 cm up.
+  const PersonBlob jump =
+      detector.Detect(RenderDepth(WithoutFloor({Cylinder{0, 4.0, 0.18, 1.95, 0.25}}), kCamera));
+  ASSERT_EQ(jump.status, DetectStatus::kOk);
+  EXPECT_NEAR(FloorY(jump), 1.3, 0.02);
+  EXPECT_NEAR(jump.bottom_height_m, 0.25, 0.03);
+  EXPECT_NEAR(jump.top_height_m, 1.95, 0.03);
+}
+
+TEST(PersonDetector, WithoutAFloorTwoPeopleGiveTheLarger) {
+  const Cylinder adult{-0.8, 4.0, 0.18, 1.75}, child{0.9, 4.2, 0.13, 1.2};
+  PersonDetector detector(kCamera, 0.001);
+  const PersonBlob blob = detector.Detect(RenderDepth(WithoutFloor({adult, child}), kCamera));
+  ASSERT_EQ(blob.status, DetectStatus::kOk);
+  EXPECT_EQ(blob.plausible_regions, 2);
+  EXPECT_NEAR(blob.centroid.x(), adult.x, 0.05);
+  EXPECT_NEAR(FloorY(blob), 1.3, 0.02);
 }
 
 TEST(PersonDetector, AnEmptyRoomIsNoPerson) {
