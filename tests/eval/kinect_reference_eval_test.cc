@@ -10,6 +10,8 @@
 #include <Eigen/Geometry>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "capture-client/skeleton/skeleton_track_spec.h"
 #include "tests/eval/eval_cli_test_support.h"
@@ -125,6 +127,19 @@ TEST(KinectReferenceCli, DatasetListsEverySequenceMirrored) {
   ExpectUsage({"--dataset", "utd-mhad:" + root, "--sequences", "a1_s1_t1,"}, "--sequences");
 }
 
+// Runs `reenact-eval tracker ARGS...` as main() does; the exit status.
+int RunCli(std::vector<std::string> args) {
+  args.insert(args.begin(), {"reenact-eval", "tracker"});
+  std::vector<const char*> argv;
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  std::set<std::string> flags = TrackerFlags();
+  flags.merge(KinectReferenceFlags());
+  const auto cl = CommandLine::Parse(static_cast<int>(argv.size()), argv.data(), 1,
+                                     CommandLineSpec{flags, {}});
+  EXPECT_TRUE(cl.ok());
+  return cl.ok() ? RunKinectReferenceCommand(*cl) : -1;
+}
+
 // A depth source of `frames` blank frames, its frame count declared or not.
 class BlankSource : public capture::FrameSource {
  public:
@@ -179,6 +194,73 @@ TEST(KinectReferenceEval, FrameCountMismatchNamesBothCountsAndSources) {
   EXPECT_EQ(r->tracked.size(), 4u);
   EXPECT_EQ(r->track_ms.size(), 4u);
   EXPECT_TRUE(r->reference[3].has_value());
+}
+
+TEST(KinectReferenceEval, RgbdFolderWithOneSkeletonFrameTooFewIsRefused) {
+  // Three depth images of a folder, a UTD-MHAD skeleton file of two frames.
+  TempDir dir;
+  fs::create_directories(dir.path / "depth");
+  for (int i = 0; i < 3; ++i)
+    cv::imwrite((dir.path / "depth" / ("00000" + std::to_string(i) + ".png")).string(),
+                cv::Mat(24, 32, CV_16UC1, cv::Scalar(2500)));
+  std::ofstream(dir.path / "camera.json")
+      << R"({"width": 32, "height": 24, "fx": 28.6, "fy": 28.6, "cx": 16, "cy": 12,
+             "depth_unit_m": 0.001, "fps": 30})";
+  {
+    std::ofstream skeleton(dir.path / "skeleton.txt");
+    for (int f = 0; f < 2; ++f)
+      for (int j = 0; j < 20; ++j) skeleton << 0.01 * j << " " << 0.02 * j << " 2.5\n";
+  }
+  const std::string source = "rgbd:" + dir.path.string() + "?mirrored=1";
+  const std::string reference = "kinect:" + (dir.path / "skeleton.txt").string() +
+                                "?variant=utd-mhad";
+  const auto command = Parse({"--source", source, "--reference", reference});
+  ASSERT_TRUE(command.ok()) << command.error().message;
+  const auto run = RunKinectReferenceEval(command->options);
+  ASSERT_FALSE(run.ok());
+  EXPECT_EQ(run.error().code, "invalid_argument");
+  for (const std::string& says :
+       std::vector<std::string>{"has 2 frames", "has 3", source, reference})
+    EXPECT_NE(run.error().message.find(says), std::string::npos) << run.error().message;
+  EXPECT_NE(RunCli({"--source", source, "--reference", reference}), 0);
+}
+
+// The shortest real sequence through the whole command: its JSON and pictures.
+TEST(KinectReferenceEval, OneRealSequenceThroughTheCommand) {
+  const fs::path root = UtdMhadRoot();
+  if (!fs::is_directory(root)) GTEST_SKIP() << root << " is absent (shared data)";
+  TempDir dir;
+  const fs::path json = dir.path / "tracker.json", pictures = dir.path / "pictures";
+  ASSERT_EQ(RunCli({"--dataset", "utd-mhad:" + root.string(), "--sequences", "a16_s2_t1",
+                    "--json", json.string(), "--pictures", pictures.string()}),
+            0);
+  std::ifstream in(json);
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["command"], "tracker");
+  const nlohmann::json* sequence = nullptr;
+  std::vector<std::string> methods;
+  int picture_rows = 0;
+  for (const auto& row : report["rows"]) {
+    if (row.contains("method")) methods.push_back(row["method"]);
+    if (row.contains("sequence") && row.contains("moving_joints")) sequence = &row;
+    if (row.contains("path")) {
+      ++picture_rows;
+      EXPECT_TRUE(fs::exists(row["path"].get<std::string>()));
+    }
+  }
+  EXPECT_EQ(methods, (std::vector<std::string>{"tracker", "baseline", "baseline_kinect20"}));
+  ASSERT_NE(sequence, nullptr);
+  EXPECT_EQ((*sequence)["sequence"], "a16_s2_t1");
+  EXPECT_EQ((*sequence)["frames"], 42);  // its depth images and skeleton frames
+  EXPECT_EQ((*sequence)["action"], 16);
+  EXPECT_EQ((*sequence)["subject"], 2);
+  EXPECT_GE((*sequence)["moving_joints"].get<int>(), 1);  // an arm curl moves the forearms
+  EXPECT_GT((*sequence)["baseline_moving_cm"].get<double>(), 0);
+  EXPECT_GT((*sequence)["ms_median"].get<double>(), 0);
+  const int tracked = (*sequence)["tracked"];
+  EXPECT_EQ((*sequence).contains("mpjpe_cm"), tracked > 0);
+  EXPECT_FALSE((*sequence).contains("mpjpe_offset_cm"));  // one subject: no offsets
+  EXPECT_EQ(picture_rows, std::min(tracked, kPictureCount));
 }
 
 // A person facing the sensor turned by yaw about the vertical, 2.5 m away, the arms swinging
