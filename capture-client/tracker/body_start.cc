@@ -12,6 +12,16 @@ void BodyStartOptions::Check() const {
   REENACT_CHECK(extremity_min_offset_m >= 0, "extremity_min_offset_m must be >= 0");
   REENACT_CHECK(facing_sensor_gain >= 0 && facing_sensor_gain < 1,
                 "facing_sensor_gain must be in [0, 1)");
+  REENACT_CHECK(restart_taller_m > 0 && restart_taller_frames >= 1,
+                "restart_taller_m must be > 0 and restart_taller_frames >= 1");
+}
+
+double PosedTopHeight(const ArticulatedBody& body, const Skeleton& posed, const Plane3& floor) {
+  const BodyShape& shape = body.shape();
+  const double crown = shape.StandingHeight() - shape.RestSkeleton()[Joint::kHead].z();
+  double top = floor.SignedDistance(posed[Joint::kHead]) + crown;
+  for (const Eigen::Vector3d& p : posed.position) top = std::max(top, floor.SignedDistance(p));
+  return top;
 }
 
 std::optional<BodyFitResult> BestUprightFit(const BodyFitter& fitter, const PersonBlob& blob,
@@ -56,7 +66,8 @@ std::optional<StartedFit> StartTrack(const BodyFitter& fitter, const GoodFitCrit
                                      const PersonBlob& blob, const BodyObservation& obs,
                                      const CalibrationOptions& calibration,
                                      const BodyStartOptions& options,
-                                     const std::optional<ArticulatedPose>& last_pose) {
+                                     const std::optional<ArticulatedPose>& last_pose,
+                                     bool with_extremities) {
   const CalibrationPoseTest test = TestCalibrationPose(blob, calibration);
   if (auto start = CalibrationStartPose(fitter.body(), blob, test)) {
     BodyFitResult r = fitter.LocalFitFromFar(*start, obs);
@@ -70,7 +81,7 @@ std::optional<StartedFit> StartTrack(const BodyFitter& fitter, const GoodFitCrit
   if (last_pose)
     if (auto f = HorizontalForward(*last_pose, up)) headings.push_back(*f);
   std::optional<GeodesicExtremities> extremities;
-  if (options.from_extremities)
+  if (options.from_extremities && with_extremities)
     extremities = FindGeodesicExtremities(blob.points, blob.floor_in_sensor, options.extremities);
   bool from_extremities = false;
   std::optional<BodyFitResult> best =

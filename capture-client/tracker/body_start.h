@@ -36,9 +36,16 @@ struct BodyStartOptions {
   // A start facing away from the sensor wins only when it costs less than (1 - gain) times
   // the cheapest facing it, [0, 1): a person in front of a sensor faces it unless the data say
   // otherwise clearly. Measured on utd-mhad's 108 real sequences (Kinect v1 at 3 m): without
-  // it 35 tracks faced the wrong way, at 0.15 12, at 0.3 none; a synthetic back seen first
-  // (walk-handheld) still costs over 30 % less and starts the right way round.
+  // it 35 tracks faced the wrong way, at 0.3 3 (at 0.4 1, but then a synthetic back seen
+  // first, walk-handheld, starts the wrong way round; it costs over 30 % less).
   double facing_sensor_gain = 0.3;
+  // A body of average proportions takes its height from the person's top as the person shows
+  // it then; one that started while the person sat or crouched is too short once it stands. It
+  // starts again at the new height when the person's top stands more than restart_taller_m
+  // above the fitted body's top (PosedTopHeight) on restart_taller_frames good frames in a
+  // row (> 0, >= 1). A raised hand does not count: the fitted arm reaches it.
+  double restart_taller_m = 0.15;
+  int restart_taller_frames = 5;
 
   void Check() const;
 };
@@ -54,6 +61,10 @@ std::optional<BodyFitResult> BestUprightFit(const BodyFitter& fitter, const Pers
                                             double extremity_min_offset_m,
                                             double facing_sensor_gain, bool* from_extremities);
 
+// The posed body's top above the floor: the highest joint, the head's crown counted (its height
+// above the head joint in the rest pose).
+double PosedTopHeight(const ArticulatedBody& body, const Skeleton& posed, const Plane3& floor);
+
 struct StartedFit {
   BodyFitResult fit;
   TrackStart start = TrackStart::kSilhouette;
@@ -61,13 +72,12 @@ struct StartedFit {
 };
 
 // A good fit that starts a track (above), or nullopt. last_pose: the track's last pose, whose
-// heading is tried too. The extremity starts are tried where options.from_extremities: on real
-// depth a start without them found the arms of a boxing guard in one heading but not in
-// another, so the cost chose the wrong way round.
+// heading is tried too; with_extremities: the extremity starts too.
 std::optional<StartedFit> StartTrack(const BodyFitter& fitter, const GoodFitCriteria& good,
                                      const PersonBlob& blob, const BodyObservation& obs,
                                      const CalibrationOptions& calibration,
                                      const BodyStartOptions& options,
-                                     const std::optional<ArticulatedPose>& last_pose);
+                                     const std::optional<ArticulatedPose>& last_pose,
+                                     bool with_extremities);
 
 }  // namespace reenact::capture

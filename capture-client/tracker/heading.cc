@@ -53,6 +53,7 @@ std::optional<Eigen::Vector3d> HorizontalForward(const ArticulatedPose& pose,
 
 bool FacesAwayFrom(const ArticulatedPose& pose, const Eigen::Vector3d& up,
                    const Eigen::Vector3d& sensor) {
+  if (!(up.norm() > 1e-9)) return false;
   const auto forward = HorizontalForward(pose, up);
   const auto toward = Horizontal(sensor - pose.root_translation, up);
   return forward && toward && forward->dot(*toward) < 0;

@@ -38,7 +38,7 @@ std::vector<Eigen::Vector3d> CandidateHeadings(const Eigen::Vector3d& up,
 // forward parallel to up gives the identity rotation's heading projected (a defined pose).
 // Whether the body faces away from a sensor at `sensor` (sensor frame: the origin): its
 // horizontal forward points away from the horizontal direction to the sensor. False where
-// either is (nearly) vertical.
+// either is (nearly) vertical or up is zero.
 bool FacesAwayFrom(const ArticulatedPose& pose, const Eigen::Vector3d& up,
                    const Eigen::Vector3d& sensor);
 

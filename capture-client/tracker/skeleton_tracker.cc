@@ -54,6 +54,7 @@ void SkeletonTracker::Reset() {
   gap_ratio_ = 1;
   bad_frames_ = 0;
   uncalibrated_frames_ = 0;
+  taller_frames_ = 0;
   waiting_neck_depths_.clear();
   for (const auto& step : method_.steps) step->Reset();
   static_scene_.Clear();
@@ -75,6 +76,20 @@ void SkeletonTracker::AdoptPose(const ArticulatedPose& pose, std::optional<doubl
   has_previous_ = !restart;
 }
 
+void SkeletonTracker::CheckTallerThanBody(const PersonBlob& blob, const BodyFitResult& fit) {
+  if (!calibration_ || calibration_->from_calibration_pose || !blob.floor_in_sensor ||
+      blob.floor_source == FloorSource::kAssumedStature)
+    return;
+  const double above = blob.top_height_m - PosedTopHeight(*body_, fit.posed.skeleton,
+                                                          *blob.floor_in_sensor);
+  taller_frames_ = above > method_.start.restart_taller_m ? taller_frames_ + 1 : 0;
+  if (taller_frames_ < method_.start.restart_taller_frames) return;
+  taller_frames_ = 0;
+  state_ = TrackState::kWaitingForCalibration;
+  uncalibrated_frames_ = std::max(0, options_.start_without_calibration_after - 1);
+  measurement_.Clear();
+}
+
 void SkeletonTracker::LoseFrame(TrackFrameResult* out) {
   if (state_ == TrackState::kTracking && ++bad_frames_ >= options_.lost_after_frames)
     state_ = TrackState::kLost;
@@ -87,7 +102,7 @@ std::optional<BodyFitResult> SkeletonTracker::StartTrackOnBlob(const PersonBlob&
   const BodyFitter fitter(*body_, method_.fitter);
   std::optional<StartedFit> s =
       StartTrack(fitter, good_, blob, obs, method_.calibration, method_.start,
-                 has_previous_ ? std::optional(pose_) : std::nullopt);
+                 has_previous_ ? std::optional(pose_) : std::nullopt, state_ == TrackState::kLost);
   *from_extremities = s && s->from_extremities;
   if (!s) return std::nullopt;
   for (const auto& step : method_.steps) step->OnTrackStart(s->start);
@@ -244,6 +259,7 @@ TrackFrameResult SkeletonTracker::TrackFrame(
     if (method_.static_scene.enabled && world_from_sensor)
       static_scene_.Learn(blob, detector_.rays(), *world_from_sensor, *body_, fit.posed);
     measurement_.Add(fit, obs, blob, camera_, method_.fitter, {*calibration_, body_, pose_});
+    CheckTallerThanBody(blob, fit);
   }
   out.skeleton = WithJointConfidence(*body_, fit, obs, method_.fitter.fit.inlier_m, out.good_fit,
                                      method_.confidence);

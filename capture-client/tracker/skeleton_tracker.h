@@ -109,6 +109,9 @@ class SkeletonTracker {
   // A good fit that starts a track on the current body (body_start.h), the steps told.
   std::optional<BodyFitResult> StartTrackOnBlob(const PersonBlob& blob, const BodyObservation& obs,
                                                 bool* from_extremities);
+  // Counts the frame towards BodyStartOptions::restart_taller_frames and, once they are reached,
+  // sends the tracker back to waiting, to start again at once with the person's new height.
+  void CheckTallerThanBody(const PersonBlob& blob, const BodyFitResult& fit);
   // A frame without a good fit (or a person) while tracking.
   void LoseFrame(TrackFrameResult* out);
   // The track's last root displacement times this frame's gap ratio (zero after a start).
@@ -133,6 +136,7 @@ class SkeletonTracker {
   Eigen::Vector3d centroid_ = Eigen::Vector3d::Zero();
   int bad_frames_ = 0;
   int uncalibrated_frames_ = 0;
+  int taller_frames_ = 0;  // good frames in a row with the person above the body (body_start.h)
   std::vector<double> waiting_neck_depths_;  // head_size.h's, on the frames waited
   BodyMeasurement measurement_;
   StaticSceneVoxels static_scene_;

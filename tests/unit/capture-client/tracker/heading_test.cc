@@ -50,6 +50,21 @@ TEST(Heading, UprightPoseStandsOnTheGroundFacingForward) {
   EXPECT_TRUE(t.root_translation.isApprox(p.root_translation));
 }
 
+TEST(Heading, FacesAwayFromTheSensorByItsForwardAcrossTheFloor) {
+  const ArticulatedBody body(BodyShape::FromHeight(1.7));
+  const Eigen::Vector3d ground(0.5, 1.3, 3), sensor = Eigen::Vector3d::Zero();
+  // Facing the sensor (-z, the way back to it) and turned around.
+  EXPECT_FALSE(FacesAwayFrom(UprightPose(body, ground, kUp, Eigen::Vector3d(0, 0, -1)), kUp, sensor));
+  // Side on: the way to the sensor, (-0.5, 0, -3), leans towards -x, so -x faces it.
+  EXPECT_FALSE(FacesAwayFrom(UprightPose(body, ground, kUp, Eigen::Vector3d(-1, 0, 0)), kUp, sensor));
+  EXPECT_TRUE(FacesAwayFrom(UprightPose(body, ground, kUp, Eigen::Vector3d(1, 0, 0)), kUp, sensor));
+  EXPECT_TRUE(FacesAwayFrom(UprightPose(body, ground, kUp, Eigen::Vector3d(0, 0, 1)), kUp, sensor));
+  // Degenerate: a sensor straight above the waist (no horizontal way to it), a zero up.
+  const ArticulatedPose p = UprightPose(body, ground, kUp, Eigen::Vector3d(0, 0, 1));
+  EXPECT_FALSE(FacesAwayFrom(p, kUp, p.root_translation + 2 * kUp));
+  EXPECT_FALSE(FacesAwayFrom(p, Eigen::Vector3d::Zero(), sensor));
+}
+
 TEST(Heading, TurnedByTurnsTheWholeBodyAboutTheWaist) {
   const ArticulatedBody body(BodyShape::FromHeight(1.7));
   const Eigen::Vector3d ground(0, 1.3, 3), forward(0, 0, -1);
