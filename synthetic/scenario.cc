@@ -31,6 +31,26 @@ BodyPose CalibrationPose() {
   return p;
 }
 
+// A full turn in place to the left over s in [0, 1] (smooth start and stop), `steps` steps
+// and the arms swinging by +-swing_rad (added to their flexion, the elbows bending by as
+// much), all fading in and out; the legs and the spine's twist are set.
+void TurnInPlace(double s, double steps, double swing_rad, BodyPose* p) {
+  p->root_yaw = 2 * kPi * SmoothStep(0, 1, s);
+  const double envelope = std::sin(kPi * s);
+  const double step = 2 * kPi * steps * s;
+  const double lift_left = std::max(0.0, std::sin(step)) * envelope;
+  const double lift_right = std::max(0.0, -std::sin(step)) * envelope;
+  p->left_leg.flexion = Deg(25) * lift_left;
+  p->left_leg.knee = Deg(45) * lift_left;
+  p->right_leg.flexion = Deg(25) * lift_right;
+  p->right_leg.knee = Deg(45) * lift_right;
+  p->left_arm.flexion += swing_rad * std::sin(step) * envelope;
+  p->right_arm.flexion += -swing_rad * std::sin(step) * envelope;
+  p->left_arm.elbow += swing_rad * envelope;
+  p->right_arm.elbow += swing_rad * envelope;
+  p->spine_twist = Deg(12) * std::sin(2 * kPi * s);
+}
+
 BodyPose TurnAndKick(double t) {
   BodyPose p = CalibrationPose();
   // Arms come down.
@@ -40,20 +60,7 @@ BodyPose TurnAndKick(double t) {
 
   // The turn, with stepping and arm swing fading in and out.
   const double s = std::clamp((t - 1.2) / 2.8, 0.0, 1.0);
-  p.root_yaw = 2 * kPi * SmoothStep(0, 1, s);
-  const double envelope = std::sin(kPi * s);
-  const double step = 2 * kPi * 2.5 * s;
-  const double lift_left = std::max(0.0, std::sin(step)) * envelope;
-  const double lift_right = std::max(0.0, -std::sin(step)) * envelope;
-  p.left_leg.flexion = Deg(25) * lift_left;
-  p.left_leg.knee = Deg(45) * lift_left;
-  p.right_leg.flexion = Deg(25) * lift_right;
-  p.right_leg.knee = Deg(45) * lift_right;
-  p.left_arm.flexion = Deg(30) * std::sin(step) * envelope;
-  p.right_arm.flexion = -Deg(30) * std::sin(step) * envelope;
-  p.left_arm.elbow += Deg(30) * envelope;
-  p.right_arm.elbow += Deg(30) * envelope;
-  p.spine_twist = Deg(12) * std::sin(2 * kPi * s);
+  TurnInPlace(s, 2.5, Deg(30), &p);
 
   // Front kick with the right leg.
   if (t >= 4.0 && t < 5.0) {
@@ -146,20 +153,7 @@ BodyPose UpperBodyTurn(double t) {
 
   // The turn, with stepping and arm swing fading in and out (as turn-and-kick's).
   const double s = std::clamp((t - 1.7) / 3.6, 0.0, 1.0);
-  p.root_yaw = 2 * kPi * SmoothStep(0, 1, s);
-  const double envelope = std::sin(kPi * s);
-  const double step = 2 * kPi * 3 * s;
-  const double lift_left = std::max(0.0, std::sin(step)) * envelope;
-  const double lift_right = std::max(0.0, -std::sin(step)) * envelope;
-  p.left_leg.flexion = Deg(25) * lift_left;
-  p.left_leg.knee = Deg(45) * lift_left;
-  p.right_leg.flexion = Deg(25) * lift_right;
-  p.right_leg.knee = Deg(45) * lift_right;
-  p.left_arm.flexion = Deg(25) * std::sin(step) * envelope;
-  p.right_arm.flexion += -Deg(25) * std::sin(step) * envelope;
-  p.left_arm.elbow += Deg(25) * envelope;
-  p.right_arm.elbow += Deg(25) * envelope;
-  p.spine_twist = Deg(12) * std::sin(2 * kPi * s);
+  TurnInPlace(s, 3, Deg(25), &p);
 
   // Both forearms come up forward (hands in front of the waist), held, and lowered.
   const double reach = SmoothStep(5.3, 5.8, t) * (1 - SmoothStep(6.1, 6.5, t));
