@@ -231,12 +231,16 @@ Expected<TrackerEvalRow> RunOne(const capture::SyntheticScene& scene, const std:
       err = Mpjpe(*r.skeleton, truth);
       errors.push_back(err);
       in_view.Add(*r.skeleton, truth, camera);
+      // The aligned error, as mpjpe_cm, takes every joint where the model put it, a joint
+      // outside the image (reported missing) too.
+      Skeleton modelled = *r.skeleton;
+      modelled.confidence.fill(1);
       if (r.calibrated)
         alignment = tracker.calibration()->from_calibration_pose
-                        ? CalibrationAlignment::FromCalibrationFrame(*r.skeleton, truth)
+                        ? CalibrationAlignment::FromCalibrationFrame(modelled, truth)
                         : std::nullopt;
       else if (alignment)
-        aligned_errors.push_back(Mpjpe(alignment->Aligned(*r.skeleton), truth));
+        aligned_errors.push_back(Mpjpe(alignment->Aligned(modelled), truth));
       if (o.floor)
         if (const auto oracle = FitLastFrameFrom(tracker, truth)) {
           floor_posed_errors.push_back(Mpjpe(oracle->posed, truth));

@@ -260,19 +260,26 @@ TEST(TrackerEval, ShortRunTracksEveryFrameAndWritesTheReport) {
         "\"in_view_reported\":", "\"invented\":", "\"reversed_rate\":", "\"torso_depth_cm\":",
         "\"torso_breadth_cm\":", "\"ms_per_frame\":", "\"case\": \"partly_outside\""})
     EXPECT_NE(text.str().find(field), std::string::npos) << field << " in " << text.str();
-  // The joints table: every joint of every row, over the tracked frames.
+  // The joints table: every joint of every row, over the tracked frames where the tracker
+  // reported it: all of them in the normal variant; in the near one the feet leave the image
+  // on some frames and are then reported missing (MarkJointsOutOfView).
   ASSERT_EQ(run->joints.size(), 2u * kJointCount);
   for (const TrackerJointRow& j : run->joints) {
-    EXPECT_EQ(j.stats.frames, 20);
+    if (j.variant == "normal") {
+      EXPECT_EQ(j.stats.frames, 20);
+    }
+    EXPECT_LE(j.stats.frames, 20);
+    EXPECT_GT(j.stats.frames, 0);
     // mean |e|^2 = bias^2 + spread^2 >= (mean |e|)^2 (Jensen).
     EXPECT_GE(std::hypot(j.stats.bias_norm_cm, j.stats.spread_cm), j.stats.mean_cm - 1e-9);
     EXPECT_LE(j.stats.bias_norm_cm, j.stats.mean_cm + 1e-9);
   }
   EXPECT_NE(text.str().find("\"joint\": \"l_hand\""), std::string::npos);
-  // The confidence table: every joint estimate of a row in one of its bins. The tracker
-  // reports every joint of a tracked frame (min_confidence > 0), so the bins hold 16 per
-  // frame, and their mean errors, weighted by n, give the row's MPJPE (both the mean over all
-  // joint estimates).
+  // The confidence table: every reported joint estimate of a row in one of its bins. The
+  // tracker reports every joint of a tracked frame in the image (min_confidence > 0), so in
+  // the normal variant the bins hold 16 per frame, and their mean errors, weighted by n, give
+  // the row's MPJPE (both the mean over all joint estimates); in the near one the feet and
+  // shins out of the image on some frames are missing (at most 4 of 16 a frame).
   ASSERT_EQ(run->confidence.size(), 2u * kConfidenceBinCount);
   for (size_t r = 0; r < run->rows.size(); ++r) {
     int n = 0;
@@ -285,9 +292,14 @@ TEST(TrackerEval, ShortRunTracksEveryFrameAndWritesTheReport) {
       share += c.stats.share;
       error_cm += c.stats.n * c.stats.mean_cm;
     }
-    EXPECT_EQ(n, run->rows[r].tracked * kJointCount);
     EXPECT_NEAR(share, 1.0, 1e-9);
-    EXPECT_NEAR(error_cm / n, run->rows[r].mpjpe_cm, 1e-9);
+    if (run->rows[r].variant == "normal") {
+      EXPECT_EQ(n, run->rows[r].tracked * kJointCount);
+      EXPECT_NEAR(error_cm / n, run->rows[r].mpjpe_cm, 1e-9);
+    } else {
+      EXPECT_LE(n, run->rows[r].tracked * kJointCount);
+      EXPECT_GE(n, run->rows[r].tracked * (kJointCount - 4));
+    }
   }
   EXPECT_NE(text.str().find("\"confidence\": \"0.75-1\""), std::string::npos);
   // The limbs table: every tracked frame of a row in view or hidden for each limb. In these
