@@ -66,7 +66,8 @@ std::vector<Candidate> FrontCheckStep::FollowRival(const StepFrame& frame,
   rival.rival_cost += r.cost;
   rival.track_cost += current.cost;
   // Turning a body that faces the sensor away from it takes the larger gain.
-  const Eigen::Vector3d& up = frame.blob.floor_in_sensor->normal;
+  const Eigen::Vector3d up =
+      frame.blob.floor_in_sensor ? frame.blob.floor_in_sensor->normal : Eigen::Vector3d::Zero();
   const Eigen::Vector3d sensor = Eigen::Vector3d::Zero();
   const bool turns_away =
       FacesAwayFrom(r.pose, up, sensor) && !FacesAwayFrom(current.pose, up, sensor);

@@ -8,7 +8,10 @@
 //    after start_without_calibration_after frames gets a body of average proportions for its
 //    standing height, its head scaled by the neck depth measured while waiting (head_size.h),
 //    placed as a recovery from the silhouette places it (body_start.h); its bones are then
-//    measured as it moves (body_measurement.h).
+//    measured as it moves (body_measurement.h). Such a body goes back to waiting, to start
+//    again at once, when the person stands well above it (it started seated:
+//    BodyStartOptions::restart_taller_m). Starts from the silhouette face the sensor unless
+//    the back fits clearly better (BodyStartOptions::facing_sensor_gain).
 //  - Tracking: find the person near its last centroid, keep the points within
 //    keep_near_model_m of the predicted body (the last pose moved on by the last root
 //    displacement, scaled by the time since the last frame: gap_ratio.h) and, given the
@@ -21,7 +24,9 @@
 //  - Lost: each frame with a person, start again from the calibration pose or the silhouette
 //    (body_start.h), with the limbs also reaching the region's extremities.
 // Bone lengths are fixed while tracking and joint limits are enforced on every step, so
-// neither can be violated. Per-joint confidence: joint_confidence.h. Output skeletons are in
+// neither can be violated. Per-joint confidence: joint_confidence.h; joints outside the image are
+// reported missing (MarkJointsOutOfView). No floor need be in view (person_detector.h gives
+// the person a floor of its own). Output skeletons are in
 // the sensor frame (OpenCV axes, metres). Not thread-safe: one caller at a time (the turned
 // starts run on threads of the tracker's own within Track).
 
