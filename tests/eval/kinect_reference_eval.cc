@@ -277,18 +277,15 @@ std::optional<double> Mean(const std::vector<double>& v) {
 }
 
 // The tracker's columns of a group of sequences.
-void AddTrackerFigures(proto::ReportRow* row, const std::vector<const SequenceResult*>& group,
-                       bool for_json) {
-  std::vector<const SequenceAgreement*> raw, offset;
-  std::vector<double> ms;
-  for (const SequenceResult* s : group) {
-    raw.push_back(&s->raw);
-    if (s->offset) offset.push_back(&*s->offset);
-    ms.insert(ms.end(), s->track_ms.begin(), s->track_ms.end());
-  }
+// A row's figures from a group's raw agreement and, where given, the agreement after the
+// offsets (a baseline repeats its raw figures there) and the tracker's times per frame.
+void AddFigures(proto::ReportRow* row, const std::vector<const SequenceAgreement*>& raw,
+                const std::optional<std::vector<const SequenceAgreement*>>& offset,
+                const std::vector<double>& ms, bool for_json) {
   const GroupAgreement r = Aggregate(raw);
   const std::optional<GroupAgreement> o =
-      offset.empty() ? std::nullopt : std::optional(Aggregate(offset));
+      !offset ? std::optional(r)
+              : offset->empty() ? std::nullopt : std::optional(Aggregate(*offset));
   row->Add("sequences", static_cast<long long>(r.sequences))
       .Add("frames", static_cast<long long>(r.frames));
   AddFigure(row, "tracked_pct", r.tracked_share, for_json, 100);
@@ -304,23 +301,17 @@ void AddTrackerFigures(proto::ReportRow* row, const std::vector<const SequenceRe
   AddFigure(row, "ms_mean", Mean(ms), for_json);
 }
 
-// A baseline's columns (the tracker's, its offset columns repeating the raw ones).
-void AddBaselineFigures(proto::ReportRow* row, const std::vector<const SequenceAgreement*>& group,
-                        bool for_json) {
-  const GroupAgreement g = Aggregate(group);
-  row->Add("sequences", static_cast<long long>(g.sequences))
-      .Add("frames", static_cast<long long>(g.frames));
-  AddFigure(row, "tracked_pct", g.tracked_share, for_json, 100);
-  AddFigure(row, "first_skeleton", g.first_estimate_median, for_json);
-  row->Add("untracked_seq", static_cast<long long>(g.untracked_sequences));
-  AddFigure(row, "joints_pct", g.joint_share, for_json, 100);
-  AddFigure(row, "mpjpe_cm", g.mpjpe_cm, for_json);
-  AddFigure(row, "mpjpe_offset_cm", g.mpjpe_cm, for_json);
-  AddFigure(row, "moving_cm", g.moving_mpjpe_cm, for_json);
-  AddFigure(row, "moving_offset_cm", g.moving_mpjpe_cm, for_json);
-  AddFigure(row, "pck10_offset_pct", g.pck, for_json, 100);
-  AddFigure(row, "ms_median", std::nullopt, for_json);
-  AddFigure(row, "ms_mean", std::nullopt, for_json);
+// The tracker's row of a group of sequences.
+void AddTrackerFigures(proto::ReportRow* row, const std::vector<const SequenceResult*>& group,
+                       bool for_json) {
+  std::vector<const SequenceAgreement*> raw, offset;
+  std::vector<double> ms;
+  for (const SequenceResult* s : group) {
+    raw.push_back(&s->raw);
+    if (s->offset) offset.push_back(&*s->offset);
+    ms.insert(ms.end(), s->track_ms.begin(), s->track_ms.end());
+  }
+  AddFigures(row, raw, offset, ms, for_json);
 }
 
 std::vector<const SequenceAgreement*> Baselines(const std::vector<const SequenceResult*>& group) {
@@ -388,12 +379,12 @@ proto::Report KinectReferenceReport(const KinectReferenceRun& run, bool for_json
   report.rows.push_back(std::move(tracker));
   proto::ReportRow baseline;
   baseline.Add("method", std::string("baseline"));
-  AddBaselineFigures(&baseline, Baselines(all), for_json);
+  AddFigures(&baseline, Baselines(all), std::nullopt, {}, for_json);
   report.rows.push_back(std::move(baseline));
   if (!baseline20.empty()) {
     proto::ReportRow row;
     row.Add("method", std::string("baseline_kinect20"));
-    AddBaselineFigures(&row, baseline20, for_json);
+    AddFigures(&row, baseline20, std::nullopt, {}, for_json);
     report.rows.push_back(std::move(row));
   }
   for (const auto& [action, group] : GroupBy(run, &ReferenceSequenceSpec::action)) {

@@ -18,17 +18,15 @@
 #include "tests/eval/joint_error_table.h"
 #include "tests/eval/tracker_eval.h"
 #include "tests/eval/utd_mhad.h"
+#include "tests/support/temp_dir.h"
 
 namespace reenact::eval {
 namespace {
 
 namespace fs = std::filesystem;
 
-// ../shared/data/utd-mhad from the repository root (this file is tests/eval/ in it).
-fs::path UtdMhadRoot() {
-  return fs::path(__FILE__).parent_path().parent_path().parent_path().parent_path() / "shared" /
-         "data" / "utd-mhad";
-}
+// ../shared/data/utd-mhad (the build's REENACT_SHARED_DATA_DIR).
+fs::path UtdMhadRoot() { return fs::path(REENACT_SHARED_DATA_DIR) / "utd-mhad"; }
 
 Expected<KinectReferenceCommand> Parse(std::vector<std::string> args) {
   std::set<std::string> flags = TrackerFlags();
@@ -39,19 +37,6 @@ Expected<KinectReferenceCommand> Parse(std::vector<std::string> args) {
 void ExpectUsage(const std::vector<std::string>& args, const std::string& says) {
   cli_test::ExpectRefused(Parse(args), args, "usage", says);
 }
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() /
-           ("kinect_reference_eval_test_" + std::to_string(::testing::UnitTest::GetInstance()
-                                                               ->random_seed()) +
-            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 TEST(KinectReferenceCli, SourceWithoutReferenceIsRefused) {
   ExpectUsage({"--source", "rgbd:some/dir"}, "--source needs --reference");
@@ -67,11 +52,11 @@ TEST(KinectReferenceCli, UnknownDatasetKindIsRefused) {
 }
 
 TEST(KinectReferenceCli, DatasetRootWithoutSequenceFoldersIsRefused) {
-  TempDir dir;
-  fs::create_directories(dir.path / "depth");
-  fs::create_directories(dir.path / "a1_s1");  // not aA_sS_tT
-  ExpectUsage({"--dataset", "utd-mhad:" + dir.path.string()}, "no sequence folder");
-  const auto missing = Parse({"--dataset", "utd-mhad:" + (dir.path / "none").string()});
+  const test_support::TempDir dir("kinect-reference-eval");
+  fs::create_directories(dir.path() / "depth");
+  fs::create_directories(dir.path() / "a1_s1");  // not aA_sS_tT
+  ExpectUsage({"--dataset", "utd-mhad:" + dir.path().string()}, "no sequence folder");
+  const auto missing = Parse({"--dataset", "utd-mhad:" + (dir.path() / "none").string()});
   ASSERT_FALSE(missing.ok());
   EXPECT_EQ(missing.error().code, "not_found");
 }
@@ -102,20 +87,20 @@ TEST(KinectReferenceCli, SourceAndReferenceAreTakenAsGiven) {
 }
 
 TEST(KinectReferenceCli, DatasetListsEverySequenceMirrored) {
-  TempDir dir;
+  const test_support::TempDir dir("kinect-reference-eval");
   for (const char* name : {"a2_s1_t1", "a1_s2_t1", "a1_s1_t1", "a10_s1_t1", "notes"})
-    fs::create_directories(dir.path / name);
-  const std::string root = dir.path.string();
+    fs::create_directories(dir.path() / name);
+  const std::string root = dir.path().string();
   const auto r = Parse({"--dataset", "utd-mhad:" + root});
   ASSERT_TRUE(r.ok()) << r.error().message;
   std::vector<std::string> names;
   for (const auto& s : r->options.sequences) names.push_back(s.name);
   EXPECT_EQ(names, (std::vector<std::string>{"a1_s1_t1", "a1_s2_t1", "a2_s1_t1", "a10_s1_t1"}));
   const ReferenceSequenceSpec& s = r->options.sequences[1];
-  EXPECT_EQ(s.source_spec, "rgbd:" + (dir.path / "a1_s2_t1").string() + "?mirrored=1");
+  EXPECT_EQ(s.source_spec, "rgbd:" + (dir.path() / "a1_s2_t1").string() + "?mirrored=1");
   EXPECT_EQ(s.reference_spec,
-            "kinect:" + (dir.path / "a1_s2_t1" / "skeleton.txt").string() + "?variant=utd-mhad");
-  EXPECT_EQ(s.joints20_path, (dir.path / "a1_s2_t1" / "skeleton.txt").string());
+            "kinect:" + (dir.path() / "a1_s2_t1" / "skeleton.txt").string() + "?variant=utd-mhad");
+  EXPECT_EQ(s.joints20_path, (dir.path() / "a1_s2_t1" / "skeleton.txt").string());
   EXPECT_EQ(s.action, 1);
   EXPECT_EQ(s.subject, 2);
 
@@ -198,21 +183,21 @@ TEST(KinectReferenceEval, FrameCountMismatchNamesBothCountsAndSources) {
 
 TEST(KinectReferenceEval, RgbdFolderWithOneSkeletonFrameTooFewIsRefused) {
   // Three depth images of a folder, a UTD-MHAD skeleton file of two frames.
-  TempDir dir;
-  fs::create_directories(dir.path / "depth");
+  const test_support::TempDir dir("kinect-reference-eval");
+  fs::create_directories(dir.path() / "depth");
   for (int i = 0; i < 3; ++i)
-    cv::imwrite((dir.path / "depth" / ("00000" + std::to_string(i) + ".png")).string(),
+    cv::imwrite((dir.path() / "depth" / ("00000" + std::to_string(i) + ".png")).string(),
                 cv::Mat(24, 32, CV_16UC1, cv::Scalar(2500)));
-  std::ofstream(dir.path / "camera.json")
+  std::ofstream(dir.path() / "camera.json")
       << R"({"width": 32, "height": 24, "fx": 28.6, "fy": 28.6, "cx": 16, "cy": 12,
              "depth_unit_m": 0.001, "fps": 30})";
   {
-    std::ofstream skeleton(dir.path / "skeleton.txt");
+    std::ofstream skeleton(dir.path() / "skeleton.txt");
     for (int f = 0; f < 2; ++f)
       for (int j = 0; j < 20; ++j) skeleton << 0.01 * j << " " << 0.02 * j << " 2.5\n";
   }
-  const std::string source = "rgbd:" + dir.path.string() + "?mirrored=1";
-  const std::string reference = "kinect:" + (dir.path / "skeleton.txt").string() +
+  const std::string source = "rgbd:" + dir.path().string() + "?mirrored=1";
+  const std::string reference = "kinect:" + (dir.path() / "skeleton.txt").string() +
                                 "?variant=utd-mhad";
   const auto command = Parse({"--source", source, "--reference", reference});
   ASSERT_TRUE(command.ok()) << command.error().message;
@@ -229,8 +214,8 @@ TEST(KinectReferenceEval, RgbdFolderWithOneSkeletonFrameTooFewIsRefused) {
 TEST(KinectReferenceEval, OneRealSequenceThroughTheCommand) {
   const fs::path root = UtdMhadRoot();
   if (!fs::is_directory(root)) GTEST_SKIP() << root << " is absent (shared data)";
-  TempDir dir;
-  const fs::path json = dir.path / "tracker.json", pictures = dir.path / "pictures";
+  const test_support::TempDir dir("kinect-reference-eval");
+  const fs::path json = dir.path() / "tracker.json", pictures = dir.path() / "pictures";
   ASSERT_EQ(RunCli({"--dataset", "utd-mhad:" + root.string(), "--sequences", "a16_s2_t1",
                     "--json", json.string(), "--pictures", pictures.string()}),
             0);

@@ -1,6 +1,7 @@
 // UTD-MHAD's folder names, action names, listing and the 20-joint reader, on constructed
 // folders and files, and on the real data set when ../shared/data is there.
 #include "tests/eval/utd_mhad.h"
+#include "tests/support/temp_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -12,22 +13,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path UtdMhadRoot() {
-  return fs::path(__FILE__).parent_path().parent_path().parent_path().parent_path() / "shared" /
-         "data" / "utd-mhad";
-}
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() /
-           (std::string("utd_mhad_test_") +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
+// ../shared/data/utd-mhad (the build's REENACT_SHARED_DATA_DIR).
+fs::path UtdMhadRoot() { return fs::path(REENACT_SHARED_DATA_DIR) / "utd-mhad"; }
 
 TEST(UtdMhad, ParsesSequenceNames) {
   const auto s = ParseUtdMhadName("a14_s3_t1");
@@ -50,8 +37,8 @@ TEST(UtdMhad, NamesTheActionsOfTheDataSet) {
 }
 
 TEST(UtdMhad, ReadsTwentyJointsPerFrame) {
-  TempDir dir;
-  const fs::path file = dir.path / "skeleton.txt";
+  const test_support::TempDir dir("utd-mhad");
+  const fs::path file = dir.path() / "skeleton.txt";
   {
     std::ofstream out(file);
     for (int f = 0; f < 2; ++f)
@@ -69,10 +56,10 @@ TEST(UtdMhad, ReadsTwentyJointsPerFrame) {
 }
 
 TEST(UtdMhad, RefusesBrokenSkeletonFiles) {
-  TempDir dir;
+  const test_support::TempDir dir("utd-mhad");
   const auto write = [&](const std::string& text) {
-    std::ofstream(dir.path / "s.txt") << text;
-    return ReadUtdMhadJoints20((dir.path / "s.txt").string());
+    std::ofstream(dir.path() / "s.txt") << text;
+    return ReadUtdMhadJoints20((dir.path() / "s.txt").string());
   };
   const auto cut = write("1 2 3\n4 5 6\n");
   ASSERT_FALSE(cut.ok());
@@ -84,7 +71,7 @@ TEST(UtdMhad, RefusesBrokenSkeletonFiles) {
   const auto nan = write("1 2 nan\n");
   ASSERT_FALSE(nan.ok());
   EXPECT_EQ(nan.error().code, "corrupt");
-  const auto missing = ReadUtdMhadJoints20((dir.path / "none.txt").string());
+  const auto missing = ReadUtdMhadJoints20((dir.path() / "none.txt").string());
   ASSERT_FALSE(missing.ok());
   EXPECT_EQ(missing.error().code, "not_found");
 }
