@@ -28,7 +28,7 @@ demo: build
 # The subject is the skinned CesiumMan of the shared data (a realistic body, not cylinders).
 SHARED_DATA ?= ../shared/data
 EVAL_ARGS ?= --scenario turn-and-kick --body $(SHARED_DATA)/models/CesiumMan.glb \
-             --methods thesis,steady,per-part,occlusion,blend,shape,profile,relit,fallback,all --views 0,30,60,90,135,180 \
+             --methods thesis,steady,per-part,occlusion,blend,shape,profile,relit,fallback,surface,all --views 0,30,60,90,135,180 \
              --step 10 --image-pairs 90@90,165@180
 eval: configure
 	@cmake --build $(BUILD_DIR) -j $(JOBS) --target reenact-eval

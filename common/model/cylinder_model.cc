@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "common/error/check.h"
 
@@ -23,13 +24,29 @@ Joint EndJoint(BodyPart part) {
   return part == BodyPart::kHead ? Joint::kHead : PartJoints(part).second;
 }
 
+double PartSurface::FactorAt(int k, double phi) const {
+  if (angles == 0) return 1.0;
+  const double x = phi / (2 * std::numbers::pi) * angles;
+  const double lo = std::floor(x);
+  const double f = x - lo;
+  const int j = ((static_cast<int>(lo) % angles) + angles) % angles;
+  const auto& ring = radial[static_cast<size_t>(std::clamp(k, 0, kShapeRings - 1))];
+  return (1 - f) * ring[static_cast<size_t>(j)] + f * ring[static_cast<size_t>((j + 1) % angles)];
+}
+
 bool PartShape::IsCylinder() const {
   for (int k = 0; k < kShapeRings; ++k)
     if (width[k] != 1.0 || depth[k] != 1.0) return false;
-  return true;
+  return surface.IsEmpty() && cap_depth == std::array<double, 2>{0, 0};
 }
 
-bool PartShape::IsCircular() const { return width == depth; }
+bool PartShape::IsCircular() const { return width == depth && surface.IsEmpty(); }
+
+double PartShape::RingReach(int k) const {
+  double factor = 1.0;
+  for (int j = 0; j < surface.angles; ++j) factor = std::max(factor, surface.radial[k][j]);
+  return factor * std::max(width[k], depth[k]);
+}
 
 double RingValueAt(const std::array<double, kShapeRings>& rings, double t) {
   const double x = std::clamp(t, 0.0, 1.0) * (kShapeRings - 1);
@@ -62,6 +79,39 @@ std::optional<Eigen::Vector3d> PartWidthDirection(const Skeleton& skeleton, Body
   return Eigen::Vector3d(w.normalized());
 }
 
+std::optional<Eigen::Vector3d> PartReferenceDirection(const Skeleton& skeleton, BodyPart part) {
+  if (part == BodyPart::kUpperTorso || part == BodyPart::kLowerTorso)
+    return PartWidthDirection(skeleton, part);
+  const bool leg = part == BodyPart::kLeftThigh || part == BodyPart::kLeftShin ||
+                   part == BodyPart::kRightThigh || part == BodyPart::kRightShin;
+  const Joint left = leg ? Joint::kLeftHip : Joint::kLeftShoulder;
+  const Joint right = leg ? Joint::kRightHip : Joint::kRightShoulder;
+  const auto [ja, jb] = PartJoints(part);
+  for (Joint j : {ja, jb, left, right, Joint::kNeck, Joint::kWaist})
+    if (!skeleton.Has(j)) return std::nullopt;
+  const Eigen::Vector3d axis = skeleton[jb] - skeleton[ja];
+  const Eigen::Vector3d across = skeleton[left] - skeleton[right];
+  const Eigen::Vector3d forward = across.cross(skeleton[Joint::kNeck] - skeleton[Joint::kWaist]);
+  if (!(axis.norm() > 0) || !(across.norm() > 0) || !(forward.norm() > 0)) return std::nullopt;
+  const Eigen::Vector3d a = across.normalized(), f = forward.normalized();
+  Eigen::Vector3d h;
+  switch (part) {
+    case BodyPart::kHead: h = f; break;
+    case BodyPart::kLeftUpperArm:
+    case BodyPart::kLeftForearm: h = -f - a; break;
+    case BodyPart::kRightUpperArm:
+    case BodyPart::kRightForearm: h = -f + a; break;
+    case BodyPart::kLeftThigh:
+    case BodyPart::kLeftShin: h = -a; break;
+    default: h = a; break;
+  }
+  h.normalize();
+  const Eigen::Vector3d z = axis.normalized();
+  const Eigen::Vector3d across_axis = h - h.dot(z) * z;
+  if (!(across_axis.norm() >= 0.1)) return std::nullopt;
+  return Eigen::Vector3d(across_axis.normalized());
+}
+
 std::optional<Cylinder> PoseCylinder(const Skeleton& skeleton, BodyPart part,
                                      const RadiusRatios& ratios, const PartExtensions& extensions,
                                      const PartShapes& shapes) {
@@ -86,6 +136,25 @@ std::optional<Cylinder> PoseCylinder(const Skeleton& skeleton, BodyPart part,
     REENACT_CHECK(std::isfinite(c.shape.width[k]) && c.shape.width[k] > 0 &&
                       std::isfinite(c.shape.depth[k]) && c.shape.depth[k] > 0,
                   "part shape rings must be finite and > 0");
+  for (int end = 0; end < 2; ++end) {
+    const int k = end == 0 ? 0 : kShapeRings - 1;
+    c.shape.cap_depth[end] = c.shape.round_end[end] ? c.radius *
+                                                          std::sqrt(c.shape.width[k] * c.shape.depth[k]) /
+                                                          c.Length()
+                                                    : 0.0;
+  }
+  const PartSurface& surface = c.shape.surface;
+  REENACT_CHECK(surface.angles == 0 || (surface.angles >= 3 && surface.angles <= kMaxSurfaceAngles),
+                "a part surface has 0 or 3 to kMaxSurfaceAngles angles");
+  for (int k = 0; k < kShapeRings; ++k)
+    for (int j = 0; j < surface.angles; ++j)
+      REENACT_CHECK(std::isfinite(surface.radial[k][j]) && surface.radial[k][j] > 0,
+                    "part surface factors must be finite and > 0");
+  if (!surface.IsEmpty()) {
+    c.width_direction = PartReferenceDirection(skeleton, part);
+    if (c.width_direction) return c;
+    c.shape.surface = {};
+  }
   if (!c.shape.IsCircular()) {
     c.width_direction = PartWidthDirection(skeleton, part);
     if (!c.width_direction) {

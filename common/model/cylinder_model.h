@@ -39,12 +39,44 @@ RadiusRatios DefaultRadiusRatios();
 // tessellated). All ones (the default): the thesis's cylinder. Values are finite and > 0.
 inline constexpr int kShapeRings = 5;
 
+// A fitted surface on top of the rings (issue 57, a body surface fitted from depth): a height
+// map in the part's own frame, radial[k][j] the factor by which ring k's ellipse is scaled at
+// the angle phi_j = 2 pi j / angles around the axis, measured in the frame's (x, y) plane from
+// x (the part's reference direction, PartReferenceDirection) towards y = axis x x, in the
+// ellipse's own parameter: the surface point at (ring k, phi) is
+//   s(k, phi) (width[k] cos phi, depth[k] sin phi, t_k)  (unit frame, times the radius in x, y)
+// with s periodic and linear in phi between the nodes phi_j, linear in t between the rings.
+// angles 0 (the default): no surface, s = 1 everywhere (the rings alone). Fitted by
+// surface_fit.h, whose rule chooses `angles` per part from its data.
+inline constexpr int kMaxSurfaceAngles = 16;
+
+struct PartSurface {
+  int angles = 0;  // 0 (none) or in [3, kMaxSurfaceAngles]
+  std::array<std::array<double, kMaxSurfaceAngles>, kShapeRings> radial{};  // finite, > 0
+
+  bool IsEmpty() const { return angles == 0; }
+  // s(k, phi): node values of ring k, periodic and linear in phi; 1 when empty.
+  double FactorAt(int k, double phi) const;
+};
+
 struct PartShape {
   std::array<double, kShapeRings> width{1, 1, 1, 1, 1};
   std::array<double, kShapeRings> depth{1, 1, 1, 1, 1};
+  PartSurface surface{};
+  // Rounded ends (issue 57: parts meet without gaps at the joints): whether the a and b ends
+  // are closed by half ellipsoids over their end rings instead of flat discs, each as deep
+  // along the axis as the end ring's mean radius (r sqrt(W D)); set by the surface fit for the
+  // ends at the limbs' joints. cap_depth is that depth as a fraction of the drawn axis length,
+  // set by PoseCylinder from round_end (0 for a flat end); the renderers draw it
+  // (cylinder_mesh.h).
+  std::array<bool, 2> round_end{false, false};
+  std::array<double, 2> cap_depth{0, 0};
 
-  bool IsCylinder() const;  // every ring 1 x 1
-  bool IsCircular() const;  // width[k] == depth[k] at every ring (tapered at most)
+  bool IsCylinder() const;  // every ring 1 x 1, no surface, flat ends
+  bool IsCircular() const;  // width[k] == depth[k] at every ring (tapered at most), no surface
+  // Largest distance of ring k's drawn points from the axis, in radii: max(width, depth)
+  // times the largest surface factor of the ring (1 without a surface).
+  double RingReach(int k) const;
 };
 
 // The value at axis fraction t (clamped to [0, 1]) of a ring profile (width or depth), linear
@@ -75,12 +107,26 @@ inline constexpr double kMinBoneLength = 1e-4;
 // 1e-6 (sine of the angle) of parallel to the axis.
 std::optional<Eigen::Vector3d> PartWidthDirection(const Skeleton& skeleton, BodyPart part);
 
+// The direction, fixed to the body, from which a part's surface angles are measured (made
+// orthogonal to the part's axis and unit): PartWidthDirection for the torso parts; for the
+// others a direction in the body's frame (across = l_shoulder - r_shoulder for the head and
+// arms, l_hip - r_hip for the legs; forward = across x (neck - waist), the way the chest
+// faces) chosen where the part's axis rarely points, so that the frame turns with the part
+// and never flips in common poses: the head forward; an arm back and across the body (the
+// left arm along -forward - across, the right along -forward + across); a leg across
+// towards the other leg (left -across, right +across). nullopt when a joint is missing or
+// the direction is within 0.1 (sine of the angle) of parallel to the axis.
+std::optional<Eigen::Vector3d> PartReferenceDirection(const Skeleton& skeleton, BodyPart part);
+
 // Cylinder of one part posed from a skeleton; nullopt if a joint is missing or the bone is
 // shorter than kMinBoneLength. With extensions, the axis end at EndJoint(part) moves outwards
 // along the axis by extensions[part] * bone length; the radius stays bone length * ratio.
 // With shapes, the cylinder carries shapes[part]; a part that is not IsCircular() gets
 // width_direction = PartWidthDirection(skeleton, part), and where that is nullopt it is drawn
 // circular instead: width[k] = depth[k] = sqrt(width[k] depth[k]) (same cross-section area).
+// A part with a surface gets width_direction = PartReferenceDirection(skeleton, part) (for
+// the torso parts the same as PartWidthDirection); where that is nullopt the surface is
+// dropped (the rings alone are drawn, as above).
 // Preconditions (CHECK): ratio and extension finite and >= 0; shape values finite and > 0.
 std::optional<Cylinder> PoseCylinder(const Skeleton& skeleton, BodyPart part,
                                      const RadiusRatios& ratios,

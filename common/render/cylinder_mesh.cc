@@ -40,23 +40,40 @@ CylinderMesh MakeUnitCylinderMesh(int segments) {
       triangle(lo + i, hi + j, hi + i);
     }
 
-  // Caps: a centre then the ring, for z = 0 (facing -z) and z = 1 (facing +z).
+  // Caps: the pole then kCapRings rings out to the rim, for z = 0 (facing -z) and z = 1.
   for (int cap = 0; cap < 2; ++cap) {
     const float z = static_cast<float>(cap);
     const Eigen::Vector3f normal(0.0f, 0.0f, cap == 0 ? -1.0f : 1.0f);
-    const auto centre = static_cast<uint32_t>(mesh.positions.size());
+    const auto pole = static_cast<uint32_t>(mesh.positions.size());
     add(Eigen::Vector3f(0.0f, 0.0f, z), normal);
-    for (uint32_t i = 0; i < n; ++i) add(Eigen::Vector3f(ring[i].x(), ring[i].y(), z), normal);
-    for (uint32_t i = 0; i < n; ++i) {
-      const uint32_t a = centre + 1 + i, b = centre + 1 + (i + 1) % n;
+    for (int m = 1; m <= kCapRings; ++m) {
+      const auto rho = static_cast<float>(CapRingRadius(m));
+      for (uint32_t i = 0; i < n; ++i) add(Eigen::Vector3f(rho * ring[i].x(), rho * ring[i].y(), z), normal);
+    }
+    // Wound counter-clockwise seen from outside: -z at z = 0, +z at z = 1.
+    auto cap_triangle = [&](uint32_t a, uint32_t b, uint32_t c) {
       if (cap == 0) {
-        triangle(centre, b, a);
+        triangle(a, c, b);
       } else {
-        triangle(centre, a, b);
+        triangle(a, b, c);
+      }
+    };
+    for (uint32_t i = 0; i < n; ++i) cap_triangle(pole, pole + 1 + i, pole + 1 + (i + 1) % n);
+    for (uint32_t m = 1; m < static_cast<uint32_t>(kCapRings); ++m) {
+      const uint32_t inner = pole + 1 + (m - 1) * n, outer = pole + 1 + m * n;
+      for (uint32_t i = 0; i < n; ++i) {
+        const uint32_t j = (i + 1) % n;
+        cap_triangle(inner + i, outer + i, outer + j);
+        cap_triangle(inner + i, outer + j, inner + j);
       }
     }
   }
   return mesh;
+}
+
+double CapRingRadius(int m) {
+  REENACT_CHECK(m >= 0 && m <= kCapRings, "cap ring index out of range");
+  return m == kCapRings ? 1.0 : std::sin(0.5 * std::numbers::pi * m / kCapRings);
 }
 
 int RingOfUnitVertex(double z) {
@@ -71,20 +88,61 @@ double RingSlope(const std::array<double, kShapeRings>& values, int k) {
   return (values[hi] - values[lo]) * (kShapeRings - 1) / (hi - lo);
 }
 
-Eigen::Vector3d ShapedUnitPosition(const PartShape& shape, const Eigen::Vector3d& unit_position) {
+double SurfaceFactorOfUnitVertex(const PartShape& shape, const Eigen::Vector3d& unit_position) {
+  if (shape.surface.IsEmpty() || (unit_position.x() == 0 && unit_position.y() == 0)) return 1.0;
+  return shape.surface.FactorAt(RingOfUnitVertex(unit_position.z()),
+                                std::atan2(unit_position.y(), unit_position.x()));
+}
+
+Eigen::Vector3d ShapedUnitPosition(const PartShape& shape, const Eigen::Vector3d& unit_position,
+                                   const Eigen::Vector3d& unit_normal) {
   const int k = RingOfUnitVertex(unit_position.z());
-  return Eigen::Vector3d(shape.width[k] * unit_position.x(), shape.depth[k] * unit_position.y(),
-                         unit_position.z());
+  const double s = SurfaceFactorOfUnitVertex(shape, unit_position);
+  double z = unit_position.z();
+  if (unit_normal.z() != 0) {
+    const double dome = shape.cap_depth[unit_normal.z() < 0 ? 0 : 1];
+    const double rho2 = unit_position.head<2>().squaredNorm();
+    z += (unit_normal.z() < 0 ? -dome : dome) * std::sqrt(std::max(0.0, 1 - rho2));
+  }
+  return Eigen::Vector3d(s * shape.width[k] * unit_position.x(),
+                         s * shape.depth[k] * unit_position.y(), z);
 }
 
 Eigen::Vector3d ShapedUnitNormal(const PartShape& shape, const Eigen::Vector3d& unit_position,
                                  const Eigen::Vector3d& unit_normal) {
-  if (unit_normal.z() != 0) return unit_normal;
   const int k = RingOfUnitVertex(unit_position.z());
+  if (unit_normal.z() != 0) {
+    const double dome = shape.cap_depth[unit_normal.z() < 0 ? 0 : 1];
+    if (dome == 0) return unit_normal;
+    const double s = SurfaceFactorOfUnitVertex(shape, unit_position);
+    const double rho2 = unit_position.head<2>().squaredNorm();
+    return Eigen::Vector3d(unit_position.x() / (s * shape.width[k]),
+                           unit_position.y() / (s * shape.depth[k]),
+                           unit_normal.z() * std::sqrt(std::max(0.0, 1 - rho2)) / dome);
+  }
+  const double c = unit_normal.x(), sn = unit_normal.y();
+  const PartSurface& surface = shape.surface;
+  if (surface.IsEmpty()) {
+    const double w = shape.width[k], d = shape.depth[k];
+    const double w_slope = RingSlope(shape.width, k), d_slope = RingSlope(shape.depth, k);
+    return Eigen::Vector3d(d * c, w * sn, -(w * d_slope * sn * sn + d * w_slope * c * c));
+  }
+  const double phi = std::atan2(sn, c);
+  const double half_step = std::numbers::pi / surface.angles;
+  std::array<double, kShapeRings> w_eff{}, d_eff{};
+  for (int r = 0; r < kShapeRings; ++r) {
+    const double f = surface.FactorAt(r, phi);
+    w_eff[r] = f * shape.width[r];
+    d_eff[r] = f * shape.depth[r];
+  }
+  const double f = surface.FactorAt(k, phi);
+  const double f_phi =
+      (surface.FactorAt(k, phi + half_step) - surface.FactorAt(k, phi - half_step)) /
+      (2 * half_step);
   const double w = shape.width[k], d = shape.depth[k];
-  const double w_slope = RingSlope(shape.width, k), d_slope = RingSlope(shape.depth, k);
-  const double c = unit_normal.x(), s = unit_normal.y();
-  return Eigen::Vector3d(d * c, w * s, -(w * d_slope * s * s + d * w_slope * c * c));
+  const double px = f_phi * w * c - f * w * sn, py = f_phi * d * sn + f * d * c;
+  const double zx = RingSlope(w_eff, k) * c, zy = RingSlope(d_eff, k) * sn;
+  return Eigen::Vector3d(py, -px, px * zy - py * zx);
 }
 
 Eigen::Matrix4d ViewerFromUnitCylinder(const Eigen::Vector3d& a, const Eigen::Vector3d& b,

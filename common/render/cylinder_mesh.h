@@ -7,30 +7,44 @@
 // The unit cylinder has radius 1 and runs along +z from z = 0 to z = 1 in its own frame. It
 // is closed: a side of kShapeRings rings (cylinder_model.h) at z_k = k / (kShapeRings - 1),
 // each of `segments` vertices at angles 2 pi i / segments, joined by kShapeRings - 1 bands of
-// `segments` quads (two triangles each), and two capping fans. Side vertices carry radial
-// normals (x, y, 0), cap vertices the cap normal (0, 0, -1) at z = 0 and (0, 0, +1) at z = 1,
-// so sides and caps do not share vertices. Every triangle is wound counter-clockwise seen from
-// outside, in a right-handed frame. Every vertex lies exactly on a ring: z == z_k in float.
+// `segments` quads (two triangles each), and two caps, each a pole and kCapRings rings of
+// `segments` vertices at radii CapRingRadius(m), m = 1 .. kCapRings (the last the rim, radius
+// 1), a fan from the pole and kCapRings - 1 bands. Side vertices carry radial normals
+// (x, y, 0), cap vertices the cap normal (0, 0, -1) at z = 0 and (0, 0, +1) at z = 1, so
+// sides and caps do not share vertices. Every triangle is wound counter-clockwise seen from
+// outside, in a right-handed frame. Every side vertex lies exactly on a ring: z == z_k in float.
 //
-// Vertex order: side vertex i of ring k is k * segments + i; then the z = 0 cap's centre and
-// its `segments` ring vertices, then the z = 1 cap's. Sizes: (kShapeRings + 2) segments + 2
-// vertices, 2 kShapeRings segments triangles.
+// Vertex order: side vertex i of ring k is k * segments + i; then the z = 0 cap's pole and
+// its rings (ring m's vertex i at pole + 1 + (m - 1) segments + i), then the z = 1 cap's.
+// Sizes: (kShapeRings + 2 kCapRings) segments + 2 vertices, 2 (kShapeRings - 1) segments
+// side triangles and (2 kCapRings - 1) segments per cap.
 // Triangle order: band k (between rings k and k + 1), quad i (between angles i and i + 1) is
 // triangles 2 (k segments + i) and 2 (k segments + i) + 1, for k in [0, kShapeRings - 1);
-// then `segments` triangles of the z = 0 cap, then `segments` triangles of the z = 1 cap.
+// then the z = 0 cap's triangles, then the z = 1 cap's.
 //
 // Shaped drawing (a PartShape, cylinder_model.h): a vertex (x, y, z) on ring k is placed at
-// the shaped unit point (width[k] x, depth[k] y, z) before ViewerFromUnitCylinder; so ring k
-// is an ellipse with semi-axes width[k] and depth[k] (times the radius) along the frame's x
-// and y axes, and each band is linear in z between two rings. A plain cylinder (all ones)
-// draws the unit mesh unchanged.
+// the shaped unit point s (width[k] x, depth[k] y, z) before ViewerFromUnitCylinder, s the
+// surface factor at the vertex (PartSurface::FactorAt(k, atan2(y, x)); 1 without a surface or
+// at a cap's centre); so ring k is an ellipse with semi-axes width[k] and depth[k] (times the
+// radius) along the frame's x and y axes, scaled by the height map around it, each band is
+// linear in z between two rings, and each cap's rim follows its end ring. A cap vertex at
+// radius rho from the axis moves outwards along the axis by cap_depth[cap] sqrt(1 - rho^2)
+// (PartShape::cap_depth; a half ellipsoid over the end ring, a rounded end; 0: the flat cap).
+// A plain cylinder (all ones, no surface, flat caps) draws the unit mesh unchanged.
 //
 // Normals (the rule both renderers use for the untextured Lambert shading):
-//   - cap vertices: the cap normal (0, 0, -+1);
+//   - cap vertices: the cap normal (0, 0, -+1) on a flat cap; on a rounded one the normal of
+//     the half ellipsoid, (x / (S W), y / (S D), -+sqrt(1 - rho^2) / cap_depth) at the mesh
+//     vertex (x, y) (S the surface factor, W and D the end ring's);
 //   - side vertex at angle (c, s) = (cos, sin) on ring k: the normal of the smooth surface
 //     (W(z) c, D(z) s, z) whose ring slopes are W'_k, D'_k (RingSlope: central differences,
 //     one-sided at the end rings), i.e. n = (D_k c, W_k s, -(W_k D'_k s^2 + D_k W'_k c^2))
 //     in the unit frame (W = width, D = depth); (c, s, 0) for a plain cylinder;
+//   - with a surface, the normal of P(phi, z) = (S W c, S D s, z), S the surface factor:
+//     P_phi x P_z with P_phi = (S' W c - S W s, S' D s + S D c, 0) and
+//     P_z = ((S W)'_k c, (S D)'_k s, 1), S' the central difference of FactorAt over half a
+//     node spacing (pi / angles) to either side, (S W)'_k and (S D)'_k RingSlope of the ring
+//     values at the vertex's angle (which reduces to the rule above where S is 1);
 //   - into the viewer frame with NormalFromUnitCylinder (the inverse transpose of the linear
 //     part of viewer_from_cylinder), and interpolated over triangles unnormalised like every
 //     attribute; the shading normalises the interpolated normal.
@@ -48,6 +62,11 @@ namespace reenact {
 
 // Segments the renderers use for every body part.
 inline constexpr int kDefaultCylinderSegments = 32;
+
+// Rings of each cap (see above), and the radius of ring m in [0, kCapRings]: 0 at the pole,
+// sin(pi m / (2 kCapRings)) (even steps of latitude on a rounded end), exactly 1 at the rim.
+inline constexpr int kCapRings = 4;
+double CapRingRadius(int m);
 
 struct CylinderMesh {
   std::vector<Eigen::Vector3f> positions;  // cylinder frame, unit radius and length
@@ -68,13 +87,17 @@ int RingOfUnitVertex(double z);
 // Precondition (CHECK): 0 <= k < kShapeRings.
 double RingSlope(const std::array<double, kShapeRings>& values, int k);
 
+// The surface factor s at a unit mesh vertex (see above).
+double SurfaceFactorOfUnitVertex(const PartShape& shape, const Eigen::Vector3d& unit_position);
+
 // A unit mesh vertex (on ring RingOfUnitVertex(z)) placed on the shaped unit surface:
-// (width[k] x, depth[k] y, z).
-Eigen::Vector3d ShapedUnitPosition(const PartShape& shape, const Eigen::Vector3d& unit_position);
+// (s width[k] x, s depth[k] y, z), z moved by the rounded end's depth for a cap vertex (one
+// whose mesh normal has a non-zero z; the default, zero, is a side vertex's).
+Eigen::Vector3d ShapedUnitPosition(const PartShape& shape, const Eigen::Vector3d& unit_position,
+                                   const Eigen::Vector3d& unit_normal = Eigen::Vector3d::Zero());
 
 // The unit-frame normal (not unit length) of the shaped surface at a unit mesh vertex with
-// its mesh normal: the rule of the header comment. A normal with a non-zero z is a cap's and
-// is returned as is.
+// its mesh normal: the rule of the header comment. A normal with a non-zero z is a cap's.
 Eigen::Vector3d ShapedUnitNormal(const PartShape& shape, const Eigen::Vector3d& unit_position,
                                  const Eigen::Vector3d& unit_normal);
 

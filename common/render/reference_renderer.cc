@@ -259,9 +259,9 @@ ReferenceRender RenderReference(const PinholeCamera& camera, std::span<const Ref
     const Eigen::Vector3d offset = viewer_from_cylinder.topRightCorner<3, 1>();
     for (size_t v = 0; v < vertices.size(); ++v) {
       const Eigen::Vector3d unit = mesh.positions[v].cast<double>();
-      vertices[v].position = linear * ShapedUnitPosition(c.shape, unit) + offset;
-      const Eigen::Vector3d normal =
-          normal_linear * ShapedUnitNormal(c.shape, unit, mesh.normals[v].cast<double>());
+      const Eigen::Vector3d unit_normal = mesh.normals[v].cast<double>();
+      vertices[v].position = linear * ShapedUnitPosition(c.shape, unit, unit_normal) + offset;
+      const Eigen::Vector3d normal = normal_linear * ShapedUnitNormal(c.shape, unit, unit_normal);
       for (int k = 0; k < 3; ++k) vertices[v].attributes[k] = static_cast<float>(normal[k]);
     }
     const auto id = static_cast<int32_t>(index);

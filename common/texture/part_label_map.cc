@@ -81,8 +81,7 @@ std::optional<ProjectedAxis> ProjectAxis(const Cylinder& c, const PinholeCamera&
     axis.t1 = t1;
     axis.z0 = a.z();
     axis.z1 = b.z();
-    for (int k = 0; k < kShapeRings; ++k)
-      axis.ring_scale[k] = std::max(c.shape.width[k], c.shape.depth[k]);
+    for (int k = 0; k < kShapeRings; ++k) axis.ring_scale[k] = c.shape.RingReach(k);
   }
   return axis;
 }
@@ -105,8 +104,7 @@ struct PixelBox {
 // Largest distance of the part's surface from its axis, metres.
 double Reach(const Cylinder& c) {
   double scale = 0;
-  for (int k = 0; k < kShapeRings; ++k)
-    scale = std::max({scale, c.shape.width[k], c.shape.depth[k]});
+  for (int k = 0; k < kShapeRings; ++k) scale = std::max(scale, c.shape.RingReach(k));
   return c.radius * scale;
 }
 
@@ -189,7 +187,8 @@ std::optional<ShapedLayer> RasterizeShapedParts(
     const Eigen::Matrix4d viewer_from_cylinder = ViewerFromUnitCylinder(*c);
     for (size_t v = 0; v < vertices.size(); ++v)
       vertices[v].position = viewer_from_cylinder.topLeftCorner<3, 3>() *
-                                 ShapedUnitPosition(c->shape, mesh.positions[v].cast<double>()) +
+                                 ShapedUnitPosition(c->shape, mesh.positions[v].cast<double>(),
+                                                    mesh.normals[v].cast<double>()) +
                              viewer_from_cylinder.topRightCorner<3, 1>();
     layer.rasterizer->DrawMesh(vertices, triangles, {}, [&](const RasterFragment& f) {
       layer.part.at(f.x, f.y) = static_cast<int8_t>(p);

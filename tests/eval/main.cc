@@ -107,6 +107,7 @@ int Quality(const CommandLine& cl) {
   if (const std::string lost = eval::LostFramesNote(*run); !lost.empty())
     std::cout << "Clip: " << run->clip_frames << " frames; " << lost << ".\n";
   std::cout << eval::SubjectLightLine(*run) << "\n";
+  std::cout << eval::SurfaceFitLine(*run) << "\n";
   for (const std::string& rule : eval::QualityRules()) std::cout << rule << "\n";
   for (const eval::QualityImage& image : run->images) std::cout << "wrote " << image.path << "\n";
   if (!printed.ok()) return Fail(printed.error());

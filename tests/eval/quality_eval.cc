@@ -278,6 +278,7 @@ Expected<QualityRun> RunQuality(const QualityOptions& options) {
   run.scene_frames = harness->scene().frame_count();
   run.gl_renderer = harness->gl_renderer();
   run.subject_light = harness->clip().subject_light();
+  run.surface_fit = harness->clip().surface_fit();
   if (!options.flat_lighting)
     run.true_subject_light =
         capture::SceneLightDirection() * ((1 - capture::kSceneAmbient) / capture::kSceneAmbient);

@@ -127,6 +127,8 @@ struct QualityRun {
   // relative to the ambient light; zero when the subject is lit flat).
   SubjectLightFit subject_light;
   Eigen::Vector3d true_subject_light = Eigen::Vector3d::Zero();
+  // The clip's part surfaces as fitted at load (viewer::Reenactment::surface_fit()).
+  SurfaceFitResult surface_fit;
 };
 
 // Everything about one compared frame.

@@ -90,6 +90,13 @@ const std::vector<QualityMethod>& QualityMethods() {
              "common/texture/part_coverage.h), drawn only where no ranked candidate is visible and "
              "the first usable one's texel is labelled as another part",
              false, Preset("fallback")),
+      Method("surface",
+             "fallback + a fitted surface: each part's radius varies around its axis as well as "
+             "along it, a height map of up to 16 angles x 5 rings in the part's body-fixed frame, "
+             "fitted at load from the depth of up to 25 stored frames at the resolution that "
+             "predicts held-out frames' points best (common/model/surface_fit.h), and the limbs' "
+             "ends rounded at their joints so that bent joints leave no gap",
+             false, Preset("surface")),
       Method("all", "fallback + steady motion: every step of issue 9 together", true,
              Preset("fallback")),
   };

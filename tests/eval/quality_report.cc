@@ -135,6 +135,31 @@ std::string SubjectLightLine(const QualityRun& run) {
          " samples in " + std::to_string(fit.bins) + " surface bins); " + truth + ".";
 }
 
+std::string SurfaceFitLine(const QualityRun& run) {
+  const SurfaceFitResult& fit = run.surface_fit;
+  std::string parts;
+  double rings_sum = 0, chosen_sum = 0;
+  int64_t weight = 0;
+  int nodes = 0;
+  for (int p = 0; p < kBodyPartCount; ++p) {
+    parts += (p ? ", " : "") + std::string(PartName(static_cast<BodyPart>(p))) + " " +
+             std::to_string(fit.angles[p]);
+    nodes += kShapeRings * fit.angles[p];
+    if (!fit.scored[p]) continue;
+    rings_sum += fit.rings_error_m[p] * fit.points[p];
+    chosen_sum += fit.chosen_error_m[p] * fit.points[p];
+    weight += fit.points[p];
+  }
+  const int floats = kBodyPartCount * (1 + 2 * kShapeRings) + nodes;
+  std::string line = "Surface fitted at load: angles per part " + parts;
+  if (weight > 0)
+    line += "; held-out error " + Fixed(1000 * rings_sum / weight, 2) + " mm with the rings alone, " +
+            Fixed(1000 * chosen_sum / weight, 2) + " mm as chosen";
+  return line + "; body model " + std::to_string(4 * floats) +
+         " bytes (extensions, rings and surface nodes as 4-byte floats, fitted at load: nothing "
+         "is added to the clip).";
+}
+
 std::string QualityCommandLine(const QualityOptions& options) {
   std::ostringstream line;
   line << "reenact-eval quality --scenario " << options.scenario;
@@ -219,6 +244,7 @@ std::string QualityMarkdown(const QualityOptions& options, const QualityRun& run
        << Fixed(r.flicker, 2) << " | " << Fixed(r.reenacted_change, 2) << " | "
        << Fixed(r.truth_change, 2) << " | " << Fixed(r.error_change, 2) << " |\n";
   md << "\n" << SubjectLightLine(run) << "\n";
+  md << "\n" << SurfaceFitLine(run) << "\n";
   md << "\nHow the figures are made:\n\n";
   for (const std::string& rule : QualityRules()) md << "- " << rule << "\n";
 

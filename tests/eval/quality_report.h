@@ -27,6 +27,12 @@ std::string LostFramesNote(const QualityRun& run);
 // them, the fit's gain; or why none was found.
 std::string SubjectLightLine(const QualityRun& run);
 
+// The part surfaces fitted at load (surface_fit.h): each part's chosen number of angles, the
+// held-out error of the rings alone and of the chosen resolution (mean over parts weighted by
+// their points, millimetres), and the body model's size: extensions, rings and surface nodes
+// as 4-byte floats (fitted at load from the stored frames, so nothing is added to the clip).
+std::string SurfaceFitLine(const QualityRun& run);
+
 // The reenact-eval command line that reproduces the options' figures.
 std::string QualityCommandLine(const QualityOptions& options);
 

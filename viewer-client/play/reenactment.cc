@@ -163,11 +163,15 @@ void Reenactment::FitShapes() {
           fit_frames_of(ShapeFitFrames(manifest_.representative_frame, usable, 8), fit_cameras),
           manifest_.radius_ratio, {.depth_scale_m = manifest_.depth_scale_m})
           .extension;
-  part_shapes_ =
-      FitCrossSections(
-          fit_frames_of(ShapeFitFrames(manifest_.representative_frame, usable, 24), fit_cameras),
-          manifest_.radius_ratio, part_extensions_, {.depth_scale_m = manifest_.depth_scale_m})
-          .shape;
+  const std::vector<ExtensionFitFrame> shape_frames =
+      fit_frames_of(ShapeFitFrames(manifest_.representative_frame, usable, 24), fit_cameras);
+  part_shapes_ = FitCrossSections(shape_frames, manifest_.radius_ratio, part_extensions_,
+                                  {.depth_scale_m = manifest_.depth_scale_m})
+                     .shape;
+  SurfaceFitOptions surface_options;
+  surface_options.depth_scale_m = manifest_.depth_scale_m;
+  surface_fit_ = FitPartSurfaces(shape_frames, manifest_.radius_ratio, part_extensions_,
+                                 part_shapes_, surface_options);
 }
 
 void Reenactment::FitLight() {
@@ -199,8 +203,13 @@ Eigen::Vector3d Reenactment::SubjectCentre() const {
 }
 
 std::pair<PartExtensions, PartShapes> Reenactment::ShapeOf(BodyShape shape) const {
-  return {shape == BodyShape::kCylinders ? PartExtensions{} : part_extensions_,
-          shape == BodyShape::kProfiled ? part_shapes_ : PartShapes{}};
+  switch (shape) {
+    case BodyShape::kCylinders: return {PartExtensions{}, PartShapes{}};
+    case BodyShape::kExtended: return {part_extensions_, PartShapes{}};
+    case BodyShape::kProfiled: return {part_extensions_, part_shapes_};
+    case BodyShape::kSurface: return {part_extensions_, surface_fit_.shape};
+  }
+  return {PartExtensions{}, PartShapes{}};
 }
 
 StoredTexture Reenactment::Texture(int n) const { return Texture(n, options_.texturing.shape); }

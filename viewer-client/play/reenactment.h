@@ -26,6 +26,7 @@
 
 #include "common/filter/steady_motion.h"
 #include "common/model/cylinder_model.h"
+#include "common/model/surface_fit.h"
 #include "common/render/texturing.h"
 #include "common/texture/part_selection.h"
 #include "common/texture/subject_light.h"
@@ -60,7 +61,14 @@ enum class BodyShape {
                // fitted extensions (Reenactment::part_extensions(); extension_fit.h)
   kProfiled,   // extended, and each part's radius varying along its axis through 5 rings,
                // the torso elliptic (Reenactment::part_shapes(); cross_section_fit.h)
+  kSurface,    // profiled, and each part's radius varying around its axis as well, fitted
+               // from the stored frames' depth, with rounded ends at the limbs' joints
+               // (Reenactment::part_surfaces(); surface_fit.h). Textured by Eq. 6-16 like the
+               // others: the mapping carries each point of the drawn surface onto the stored
+               // frame's part turned about its axis by the difference in facing, so the
+               // fitted surface's points project where that frame saw the part's near side
 };
+
 
 struct TexturingOptions {
   TextureSelection selection = TextureSelection::kWholeBody;
@@ -130,6 +138,12 @@ class Reenactment {
   // over the clip (common/model/cross_section_fit.h); the shape BodyShape::kProfiled draws.
   const PartShapes& part_shapes() const { return part_shapes_; }
 
+  // Each part's surface (surface_fit.h) on top of part_shapes(), fitted at load from the depth
+  // of the same frames as the cross-sections; the shape BodyShape::kSurface draws. The fit's
+  // held-out errors and chosen resolutions are surface_fit().
+  const PartShapes& part_surfaces() const { return surface_fit_.shape; }
+  const SurfaceFitResult& surface_fit() const { return surface_fit_; }
+
   // The light on the subject (world frame), fitted at load from the colours, depth normals and
   // profiled part labels of the representative frame and up to 24 other usable frames spread
   // over the clip (common/texture/subject_light.h); TexturingOptions::relight uses it.
@@ -176,13 +190,14 @@ class Reenactment {
     std::once_flag built;
     PartTextureIndex index;
   };
-  std::unique_ptr<std::array<CoverageIndex, 3>> coverage_index_ =
-      std::make_unique<std::array<CoverageIndex, 3>>();
+  std::unique_ptr<std::array<CoverageIndex, 4>> coverage_index_ =
+      std::make_unique<std::array<CoverageIndex, 4>>();
   std::vector<uint16_t> part_allowed_;
   const PartTextureIndex& CoverageIndexOf(BodyShape shape) const;
   std::vector<Skeleton> steady_in_world_;  // the steady track, world frame
   PartExtensions part_extensions_{};
   PartShapes part_shapes_{};
+  SurfaceFitResult surface_fit_{};
   SubjectLightFit subject_light_{};
 
   // Construction, in order: the flags of the frames whose skeleton the capture flagged; the

@@ -9,7 +9,7 @@ namespace {
 // Ranked candidates per part of the visible modes.
 constexpr int kRankedCandidates = 3;
 
-constexpr std::array<std::pair<std::string_view, TexturingOptions>, 8> kPresets = {{
+constexpr std::array<std::pair<std::string_view, TexturingOptions>, 9> kPresets = {{
     {"thesis", {}},
     {"per-part", {.selection = TextureSelection::kPerPart}},
     {"occlusion",
@@ -47,6 +47,14 @@ constexpr std::array<std::pair<std::string_view, TexturingOptions>, 8> kPresets 
       .fallback_candidates = kMaxTextureCandidates - kRankedCandidates,
       .hysteresis = 0.1,
       .shape = BodyShape::kProfiled,
+      .relight = true}},
+    {"surface",
+     {.selection = TextureSelection::kPerPart,
+      .mode = TexturingMode::kBlendVisible,
+      .candidates = kRankedCandidates,
+      .fallback_candidates = kMaxTextureCandidates - kRankedCandidates,
+      .hysteresis = 0.1,
+      .shape = BodyShape::kSurface,
       .relight = true}},
 }};
 

@@ -13,6 +13,9 @@
 //              under the clip's fitted subject light (TexturingOptions::relight)
 //   fallback   relit with 3 fallback candidates per part, chosen to see what of the part the
 //              3 ranked ones do not (TexturingOptions::fallback_candidates)
+//   surface    fallback with each part's surface fitted from the stored depth around its axis
+//              as well as along it, textured through the part's body-fixed frame
+//              (BodyShape::kSurface)
 
 #include <string>
 #include <string_view>

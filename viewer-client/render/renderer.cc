@@ -50,7 +50,7 @@ struct Renderer::Impl {
   struct CylinderProgram {
     GlProgram program;
     GLint projection = -1, model = -1, normal = -1, ring_width = -1, ring_depth = -1,
-          ring_width_slope = -1, ring_depth_slope = -1, textured = -1, color = -1, stored = -1,
+          ring_width_slope = -1, ring_depth_slope = -1, surface = -1, surface_angles = -1, cap_depth = -1, textured = -1, color = -1, stored = -1,
           intrinsics = -1, size = -1, relight = -1, light = -1, stored_light = -1;
     GLint mode = -1, ranked = -1, weight = -1, label = -1,
           depth_tolerance = -1;  // visible variants only
@@ -149,7 +149,7 @@ Status Renderer::Impl::MakeCylinderProgram(int variant) {
   const bool visibility = variant > 0;
   const int candidates = visibility ? variant : 1;
   CylinderProgram& c = cylinder_programs[static_cast<size_t>(variant)];
-  Expected<GlProgram> program = MakeProgram("cylinder", shaders::CylinderVertex(kShapeRings),
+  Expected<GlProgram> program = MakeProgram("cylinder", shaders::CylinderVertex(kShapeRings, kMaxSurfaceAngles),
                                             shaders::CylinderFragment(candidates, visibility));
   if (!program) return program.error();
   c.program = std::move(program).value();
@@ -167,6 +167,9 @@ Status Renderer::Impl::MakeCylinderProgram(int variant) {
   c.ring_depth = UniformLocation(p, "u_ring_depth");
   c.ring_width_slope = UniformLocation(p, "u_ring_width_slope");
   c.ring_depth_slope = UniformLocation(p, "u_ring_depth_slope");
+  c.surface = UniformLocation(p, "u_surface");
+  c.surface_angles = UniformLocation(p, "u_surface_angles");
+  c.cap_depth = UniformLocation(p, "u_cap_depth");
   c.textured = UniformLocation(p, "u_textured");
   c.color = UniformLocation(p, "u_color");
   c.stored = UniformLocation(p, "u_stored_from_viewer");
@@ -374,6 +377,15 @@ void Renderer::Impl::SetShapeUniforms(const CylinderProgram& program, const Cyli
   glUniform1fv(program.ring_depth, kShapeRings, depth.data());
   glUniform1fv(program.ring_width_slope, kShapeRings, width_slope.data());
   glUniform1fv(program.ring_depth_slope, kShapeRings, depth_slope.data());
+  const PartSurface& surface = c.shape.surface;
+  std::array<float, kShapeRings * kMaxSurfaceAngles> radial{};
+  for (int k = 0; k < kShapeRings; ++k)
+    for (int j = 0; j < surface.angles; ++j)
+      radial[static_cast<size_t>(k * kMaxSurfaceAngles + j)] = static_cast<float>(surface.radial[k][j]);
+  glUniform1fv(program.surface, kShapeRings * kMaxSurfaceAngles, radial.data());
+  glUniform1i(program.surface_angles, surface.angles);
+  glUniform2f(program.cap_depth, static_cast<float>(c.shape.cap_depth[0]),
+              static_cast<float>(c.shape.cap_depth[1]));
   glUniform3f(program.color, c.color.x(), c.color.y(), c.color.z());
 }
 
@@ -563,6 +575,15 @@ void Renderer::Draw(const FrameDraw& frame) {
       REENACT_CHECK(std::isfinite(c.shape.width[k]) && c.shape.width[k] > 0 &&
                         std::isfinite(c.shape.depth[k]) && c.shape.depth[k] > 0,
                     "cylinder shape rings must be finite and > 0");
+    REENACT_CHECK(c.shape.surface.angles == 0 ||
+                      (c.shape.surface.angles >= 3 && c.shape.surface.angles <= kMaxSurfaceAngles),
+                  "cylinder surface angles must be 0 or in [3, kMaxSurfaceAngles]");
+    for (int k = 0; k < kShapeRings; ++k)
+      for (int j = 0; j < c.shape.surface.angles; ++j)
+        REENACT_CHECK(std::isfinite(c.shape.surface.radial[k][j]) && c.shape.surface.radial[k][j] > 0,
+                      "cylinder surface factors must be finite and > 0");
+    for (double depth : c.shape.cap_depth)
+      REENACT_CHECK(std::isfinite(depth) && depth >= 0, "cylinder cap depths must be finite and >= 0");
     REENACT_CHECK(!c.width_direction || c.width_direction->allFinite(),
                   "cylinder width direction must be finite");
     REENACT_CHECK(

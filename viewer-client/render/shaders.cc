@@ -6,7 +6,8 @@ namespace reenact::viewer::shaders {
 
 namespace {
 
-// After "#version 330 core" and the define RINGS (kShapeRings).
+// After "#version 330 core" and the defines RINGS (kShapeRings) and MAX_ANGLES
+// (kMaxSurfaceAngles).
 const char* const kCylinderVertexBody = R"(
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
@@ -17,20 +18,59 @@ uniform float u_ring_width[RINGS];
 uniform float u_ring_depth[RINGS];
 uniform float u_ring_width_slope[RINGS];
 uniform float u_ring_depth_slope[RINGS];
+uniform float u_surface[RINGS * MAX_ANGLES];
+uniform int u_surface_angles;
+uniform vec2 u_cap_depth;
 out vec3 v_position;
 out vec3 v_normal;
+float SurfaceFactor(int k, float phi) {
+  if (u_surface_angles == 0) return 1.0;
+  float x = phi / 6.283185307179586 * float(u_surface_angles);
+  float lo = floor(x);
+  float f = x - lo;
+  int j = int(mod(lo, float(u_surface_angles)));
+  int j1 = j + 1 == u_surface_angles ? 0 : j + 1;
+  return (1.0 - f) * u_surface[k * MAX_ANGLES + j] + f * u_surface[k * MAX_ANGLES + j1];
+}
 void main() {
   int k = clamp(int(floor(a_position.z * float(RINGS - 1) + 0.5)), 0, RINGS - 1);
   float w = u_ring_width[k];
   float d = u_ring_depth[k];
+  float s = 1.0;
+  if (u_surface_angles > 0 && (a_position.x != 0.0 || a_position.y != 0.0))
+    s = SurfaceFactor(k, atan(a_position.y, a_position.x));
   vec3 n = a_normal;
-  if (a_normal.z == 0.0) {
+  float z = a_position.z;
+  if (a_normal.z != 0.0) {
+    float dome = a_normal.z < 0.0 ? u_cap_depth.x : u_cap_depth.y;
+    if (dome != 0.0) {
+      float h = sqrt(max(0.0, 1.0 - dot(a_position.xy, a_position.xy)));
+      z += a_normal.z < 0.0 ? -dome * h : dome * h;
+      n = vec3(a_position.x / (s * w), a_position.y / (s * d), a_normal.z * h / dome);
+    }
+  } else {
     float c = a_normal.x;
-    float s = a_normal.y;
-    n = vec3(d * c, w * s,
-             -(w * u_ring_depth_slope[k] * s * s + d * u_ring_width_slope[k] * c * c));
+    float sn = a_normal.y;
+    if (u_surface_angles == 0) {
+      n = vec3(d * c, w * sn,
+               -(w * u_ring_depth_slope[k] * sn * sn + d * u_ring_width_slope[k] * c * c));
+    } else {
+      float phi = atan(sn, c);
+      float h = 3.141592653589793 / float(u_surface_angles);
+      int lo = max(k - 1, 0);
+      int hi = min(k + 1, RINGS - 1);
+      float scale = float(RINGS - 1) / float(hi - lo);
+      float f_hi = SurfaceFactor(hi, phi);
+      float f_lo = SurfaceFactor(lo, phi);
+      float wz = (f_hi * u_ring_width[hi] - f_lo * u_ring_width[lo]) * scale;
+      float dz = (f_hi * u_ring_depth[hi] - f_lo * u_ring_depth[lo]) * scale;
+      float f_phi = (SurfaceFactor(k, phi + h) - SurfaceFactor(k, phi - h)) / (2.0 * h);
+      float px = f_phi * w * c - s * w * sn;
+      float py = f_phi * d * sn + s * d * c;
+      n = vec3(py, -px, px * dz * sn - py * wz * c);
+    }
   }
-  vec4 p = u_viewer_from_cylinder * vec4(a_position.x * w, a_position.y * d, a_position.z, 1.0);
+  vec4 p = u_viewer_from_cylinder * vec4(a_position.x * s * w, a_position.y * s * d, z, 1.0);
   v_position = p.xyz;
   v_normal = u_normal_from_cylinder * n;
   gl_Position = u_projection * p;
@@ -188,8 +228,13 @@ const char* const kCylinderFragmentTail = R"(
 
 }  // namespace
 
-std::string CylinderVertex(int rings) {
-  return "#version 330 core\n#define RINGS " + std::to_string(rings) + "\n" + kCylinderVertexBody;
+std::string CylinderVertex(int rings, int max_angles) {
+  std::string source = "#version 330 core\n#define RINGS ";
+  source += std::to_string(rings);
+  source += "\n#define MAX_ANGLES ";
+  source += std::to_string(max_angles);
+  source += "\n";
+  return source + kCylinderVertexBody;
 }
 
 std::string CylinderFragment(int candidates, bool visibility) {

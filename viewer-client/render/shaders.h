@@ -30,7 +30,7 @@ namespace reenact::viewer::shaders {
 // colour (a fallback wherever a ranked one is visible). No candidate colours it: discard. Flat mode
 // (u_textured == 0): Lambert shading of u_color under a headlight. Writes alpha 1: the renderer's
 // subject mask.
-std::string CylinderVertex(int rings);
+std::string CylinderVertex(int rings, int max_angles);
 std::string CylinderFragment(int candidates, bool visibility);
 
 // Floor: a quad with a_position (viewer frame) and a_plane (metres along two in-plane axes

@@ -21,9 +21,10 @@ Eigen::Vector3d D(const Eigen::Vector3f& v) { return v.cast<double>(); }
 TEST(CylinderMesh, SizesFollowTheSegmentCount) {
   for (int n : {3, 8, 32}) {
     const CylinderMesh mesh = MakeUnitCylinderMesh(n);
-    EXPECT_EQ(mesh.positions.size(), static_cast<size_t>((kShapeRings + 2) * n + 2));
+    EXPECT_EQ(mesh.positions.size(), static_cast<size_t>((kShapeRings + 2 * kCapRings) * n + 2));
     EXPECT_EQ(mesh.normals.size(), mesh.positions.size());
-    EXPECT_EQ(mesh.indices.size(), static_cast<size_t>(3 * 2 * kShapeRings * n));
+    EXPECT_EQ(mesh.indices.size(),
+              static_cast<size_t>(3 * (2 * (kShapeRings - 1) * n + 2 * (2 * kCapRings - 1) * n)));
     for (uint32_t i : mesh.indices) EXPECT_LT(i, mesh.positions.size());
   }
 }
@@ -43,7 +44,9 @@ TEST(CylinderMesh, VerticesLieOnTheUnitCylinder) {
       EXPECT_NEAR(n.y(), p.y(), 1e-6);
     } else {  // cap: normal along the axis, pointing away from the body
       EXPECT_TRUE(p.z() == 0.0f || p.z() == 1.0f);
-      EXPECT_TRUE(r < 1e-6 || std::abs(r - 1.0) < 1e-6);
+      bool on_a_cap_ring = false;
+      for (int m = 0; m <= kCapRings; ++m) on_a_cap_ring |= std::abs(r - CapRingRadius(m)) < 1e-6;
+      EXPECT_TRUE(on_a_cap_ring) << r;
       EXPECT_EQ(n.z(), p.z() == 0.0f ? -1.0f : 1.0f);
     }
   }
@@ -100,7 +103,7 @@ TEST(CylinderMesh, EveryEdgeIsSharedByTwoOppositeTriangles) {
 
 // The documented order: side vertex k n + i is at angle 2 pi i / n on ring k; band k, quad i
 // is triangles 2 (k n + i) and 2 (k n + i) + 1, spanning rings k, k + 1 and angles i, i + 1;
-// then n triangles of the z = 0 cap and n of the z = 1 cap.
+// then (2 kCapRings - 1) n triangles of the z = 0 cap and as many of the z = 1 cap.
 TEST(CylinderMesh, VerticesAndTrianglesFollowTheDocumentedOrder) {
   const int n = 7;
   const CylinderMesh mesh = MakeUnitCylinderMesh(n);
@@ -124,9 +127,10 @@ TEST(CylinderMesh, VerticesAndTrianglesFollowTheDocumentedOrder) {
         }
       }
     }
+  const int per_cap = (2 * kCapRings - 1) * n;
   for (int cap = 0; cap < 2; ++cap)
-    for (int i = 0; i < n; ++i) {
-      const size_t t = 2 * static_cast<size_t>((kShapeRings - 1) * n) + cap * n + i;
+    for (int i = 0; i < per_cap; ++i) {
+      const size_t t = 2 * static_cast<size_t>((kShapeRings - 1) * n) + cap * per_cap + i;
       for (int v = 0; v < 3; ++v)
         EXPECT_EQ(mesh.positions[mesh.indices[3 * t + v]].z(), static_cast<float>(cap));
     }
@@ -217,28 +221,99 @@ TEST(CylinderMesh, ShapedSideNormalsAreExactForLinearProfiles) {
                 0, 1e-12);
 }
 
+// A height map scales each vertex by its factor: at the nodes (every 90 degrees for 4 angles)
+// by the node's value, half way between two nodes by their mean; caps follow their end ring.
+TEST(CylinderMesh, SurfaceScalesEachVertexByTheHeightMap) {
+  PartShape shape;
+  shape.width = {1.0, 1.1, 1.2, 1.3, 1.4};
+  shape.depth = shape.width;
+  shape.surface.angles = 4;
+  for (int k = 0; k < kShapeRings; ++k) shape.surface.radial[k] = {1.2, 0.8, 1.3, 0.7};
+  const CylinderMesh mesh = MakeUnitCylinderMesh(32);
+  for (size_t v = 0; v < mesh.positions.size(); ++v) {
+    const Eigen::Vector3d p = D(mesh.positions[v]);
+    const double r = p.head<2>().norm();
+    if (r < 1e-6) continue;  // a cap's pole
+    const int k = RingOfUnitVertex(p.z());
+    const double phi = std::atan2(p.y(), p.x());
+    const double radius = ShapedUnitPosition(shape, p, D(mesh.normals[v])).head<2>().norm();
+    const auto near = [phi](double deg) {
+      return std::abs(std::remainder(phi - deg * std::numbers::pi / 180, 2 * std::numbers::pi)) <
+             1e-6;
+    };
+    if (near(0)) {
+      EXPECT_NEAR(radius, 1.2 * shape.width[k] * r, 1e-6);
+    }
+    if (near(90)) {
+      EXPECT_NEAR(radius, 0.8 * shape.width[k] * r, 1e-6);
+    }
+    if (near(180)) {
+      EXPECT_NEAR(radius, 1.3 * shape.width[k] * r, 1e-6);
+    }
+    if (near(-45)) {
+      EXPECT_NEAR(radius, 0.95 * shape.width[k] * r, 1e-6);
+    }
+  }
+  EXPECT_FALSE(shape.IsCylinder());
+  EXPECT_FALSE(shape.IsCircular());
+  EXPECT_NEAR(shape.RingReach(4), 1.3 * 1.4, 1e-12);
+}
+
+// Rounded ends (cap_depth h): the closed mesh encloses the prism and two half ellipsoids over
+// the end discs, pi r^2 (2/3) h each; the tessellation is inscribed, so a little less.
+TEST(CylinderMesh, RoundedEndsEncloseHalfEllipsoids) {
+  const int n = 128;
+  const double prism = n / 2.0 * std::sin(2 * std::numbers::pi / n);
+  PartShape shape;
+  shape.cap_depth = {0.3, 0.1};
+  EXPECT_FALSE(shape.IsCylinder());
+  const CylinderMesh mesh = MakeUnitCylinderMesh(n);
+  double volume = 0;
+  for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+    Eigen::Vector3d p[3];
+    for (int k = 0; k < 3; ++k)
+      p[k] = ShapedUnitPosition(shape, D(mesh.positions[mesh.indices[t + k]]),
+                                D(mesh.normals[mesh.indices[t + k]]));
+    volume += p[0].dot(p[1].cross(p[2])) / 6.0;
+  }
+  const double domes = 2.0 / 3.0 * std::numbers::pi * (0.3 + 0.1);
+  EXPECT_LT(volume, prism + domes);
+  EXPECT_GT(volume, prism + 0.9 * domes);
+}
+
 // Placed as a body part (radius 0.1 m, length 0.5 m, elliptic and tapered), every triangle
-// faces its vertices' normals (NormalFromUnitCylinder of ShapedUnitNormal).
+// faces its vertices' normals (NormalFromUnitCylinder of ShapedUnitNormal); with a height map
+// and rounded ends as well, where the faces of a surface whose factor swings by up to 0.3
+// between neighbouring nodes and rings lean up to about 40 degrees from the smooth normal.
 TEST(CylinderMesh, ShapedTrianglesFaceTheirVertexNormals) {
   PartShape shape;
   shape.width = {1.4, 1.5, 1.6, 1.4, 1.2};
   shape.depth = {0.8, 0.9, 1.0, 0.9, 0.7};
+  PartShape surface = shape;
+  surface.surface.angles = 8;
+  for (int k = 0; k < kShapeRings; ++k)
+    for (int j = 0; j < 8; ++j)
+      surface.surface.radial[k][j] = 1 + 0.15 * std::cos(2 * std::numbers::pi * j / 4 + k);
+  surface.cap_depth = {0.2, 0.1};
   const CylinderMesh mesh = MakeUnitCylinderMesh(kDefaultCylinderSegments);
-  const Eigen::Matrix4d m =
-      ViewerFromUnitCylinder(Eigen::Vector3d(0.1, 0.2, 2.0), Eigen::Vector3d(0.3, 0.6, 2.2), 0.1,
-                             Eigen::Vector3d(1, 0, 0));
-  const Eigen::Matrix3d normal_from_cylinder = NormalFromUnitCylinder(m);
-  for (size_t t = 0; t < mesh.indices.size(); t += 3) {
-    Eigen::Vector3d p[3], n[3];
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t i = mesh.indices[t + k];
-      p[k] = m.topLeftCorner<3, 3>() * ShapedUnitPosition(shape, D(mesh.positions[i]));
-      n[k] =
-          (normal_from_cylinder * ShapedUnitNormal(shape, D(mesh.positions[i]), D(mesh.normals[i])))
-              .normalized();
+  for (const auto& [shaped, least] : {std::pair{shape, 0.95}, std::pair{surface, 0.7}}) {
+    const Eigen::Matrix4d m =
+        ViewerFromUnitCylinder(Eigen::Vector3d(0.1, 0.2, 2.0), Eigen::Vector3d(0.3, 0.6, 2.2), 0.1,
+                               Eigen::Vector3d(1, 0, 0));
+    const Eigen::Matrix3d normal_from_cylinder = NormalFromUnitCylinder(m);
+    for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+      Eigen::Vector3d p[3], n[3];
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t i = mesh.indices[t + k];
+        p[k] = m.topLeftCorner<3, 3>() *
+               ShapedUnitPosition(shaped, D(mesh.positions[i]), D(mesh.normals[i]));
+        n[k] = (normal_from_cylinder *
+                ShapedUnitNormal(shaped, D(mesh.positions[i]), D(mesh.normals[i])))
+                   .normalized();
+      }
+      const Eigen::Vector3d face = (p[1] - p[0]).cross(p[2] - p[0]).normalized();
+      for (int k = 0; k < 3; ++k) EXPECT_GT(face.dot(n[k]), least) << t;
     }
-    const Eigen::Vector3d face = (p[1] - p[0]).cross(p[2] - p[0]).normalized();
-    for (int k = 0; k < 3; ++k) EXPECT_GT(face.dot(n[k]), 0.95);
   }
 }
 

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -247,8 +248,10 @@ namespace {
 
 // Shaped cylinders (issue 9, a closer shape): elliptic torsos whose width runs from the right to
 // the left shoulder (hip), wider at the chest and hips than at the waist, and limbs tapered
-// towards their end joint; the head stays the thesis's cylinder.
-void ShapeCylinders(FrameDraw& draw) {
+// towards their end joint; the head stays the thesis's cylinder. With surface (issue 57, a
+// fitted surface): every part also carries a height map of 8 angles that varies around and
+// along the axis (factors 0.8 to 1.2), the head included, and the limbs rounded ends.
+void ShapeCylinders(FrameDraw& draw, bool surface = false) {
   std::map<BodyPart, const CylinderDraw*> by_part;
   for (const CylinderDraw& c : draw.cylinders) by_part[c.part] = &c;
   const auto across = [&by_part](BodyPart left, BodyPart right) -> std::optional<Eigen::Vector3d> {
@@ -258,6 +261,15 @@ void ShapeCylinders(FrameDraw& draw) {
   const auto shoulders = across(BodyPart::kLeftUpperArm, BodyPart::kRightUpperArm);
   const auto hips = across(BodyPart::kLeftThigh, BodyPart::kRightThigh);
   for (CylinderDraw& c : draw.cylinders) {
+    if (surface) {
+      c.shape.surface.angles = 8;
+      for (int k = 0; k < kShapeRings; ++k)
+        for (int j = 0; j < 8; ++j)
+          c.shape.surface.radial[k][j] = 1 + 0.2 * std::cos(2 * std::numbers::pi * j / 4 + k);
+      if (!c.width_direction) c.width_direction = shoulders;
+      const bool torso = c.part == BodyPart::kUpperTorso || c.part == BodyPart::kLowerTorso;
+      if (!torso && c.part != BodyPart::kHead) c.shape.cap_depth = {0.15, 0.1};
+    }
     if (c.part == BodyPart::kHead) continue;
     if (c.part == BodyPart::kUpperTorso || c.part == BodyPart::kLowerTorso) {
       const bool upper = c.part == BodyPart::kUpperTorso;
@@ -276,6 +288,7 @@ struct ShapedCase {
   bool textured;
   TexturingMode mode;  // kFirst: Eq. 5's single frame (Build's draw); else three candidates
   double angle_deg;
+  bool surface = false;  // height maps and rounded ends as well (ShapeCylinders)
 };
 
 class GlReferenceShapedAgreement : public ::testing::TestWithParam<ShapedCase> {};
@@ -290,7 +303,7 @@ TEST_P(GlReferenceShapedAgreement, ShapedCylindersAgreeWithTheCpuReference) {
           RecordedClip(), frame.texture_frame, param.mode,
           [&uploaded](int n) { return uploaded(n); }, frame.draw);
     const ReferenceRender plain = uploaded.RenderReferenceOf(frame.draw);
-    ShapeCylinders(frame.draw);
+    ShapeCylinders(frame.draw, param.surface);
     const RenderedFrame gl = renderer.Render(frame.draw);
     const ReferenceRender ref = uploaded.RenderReferenceOf(frame.draw);
 
@@ -308,7 +321,10 @@ INSTANTIATE_TEST_SUITE_P(Shapes, GlReferenceShapedAgreement,
                                            ShapedCase{false, TexturingMode::kFirst, 90.0},
                                            ShapedCase{true, TexturingMode::kFirst, 60.0},
                                            ShapedCase{true, TexturingMode::kFirstVisible, 0.0},
-                                           ShapedCase{true, TexturingMode::kBlendVisible, 150.0}));
+                                           ShapedCase{true, TexturingMode::kBlendVisible, 150.0},
+                                           ShapedCase{false, TexturingMode::kFirst, 90.0, true},
+                                           ShapedCase{true, TexturingMode::kBlendVisible, 30.0,
+                                                      true}));
 
 }  // namespace
 }  // namespace reenact::viewer

@@ -408,13 +408,12 @@ TEST(GlRenderer, FlatShadingFollowsTheConesTiltedNormal) {
   const PinholeCamera cam = ViewerCamera();
   const double r = 0.05, d = 2.0, x0 = -0.2, x1 = 0.2;
   FrameDraw frame = BlackFrame();
-  CylinderDraw c;
+  CylinderDraw& c = frame.cylinders.emplace_back();
   c.a = Eigen::Vector3d(x0, 0, d);
   c.b = Eigen::Vector3d(x1, 0, d);
   c.radius = r;
   c.color = Eigen::Vector3f(1, 1, 1);
   for (int k = 0; k < kShapeRings; ++k) c.shape.width[k] = c.shape.depth[k] = 1.0 + k;
-  frame.cylinders.push_back(c);
   const RenderedFrame out = renderer.Render(frame);
   // Radius R(x) = s (x - apex); the ray t (dx, dy, 1) meets the cone where
   // (t dy)^2 + (t - d)^2 = s^2 (t dx - apex)^2 (nearest root).
