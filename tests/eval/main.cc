@@ -1,7 +1,9 @@
-// reenact-eval: accuracy against ground truth: quality, segment, slam, reloc and tracker.
+// reenact-eval: accuracy against ground truth: quality, holdout, segment, slam, reloc and
+// tracker.
 #include <iostream>
 
 #include "common/cli/command_line.h"
+#include "tests/eval/holdout_cli.h"
 #include "tests/eval/kinect_reference_eval.h"
 #include "tests/eval/quality_cli.h"
 #include "tests/eval/quality_report.h"
@@ -31,6 +33,18 @@ constexpr const char* kUsage =
     "      the clip, and frame numbers count the clip's frames); --lighting flat: the\n"
     "      subject lit flat in recording and truth (no shading to carry between poses;\n"
     "      default scene)\n"
+    "  reenact-eval holdout --source SRC [--skeleton source|track|SPEC] [--poses auto|slam]\n"
+    "                       --every K --window W [--methods LIST] [--frames N] [--json FILE]\n"
+    "                       [--images DIR]\n"
+    "      quality on held-out real views: frames K, 2K, ... (each with its window inside\n"
+    "      the recording) and their W neighbours on each side are left out, the clip is\n"
+    "      recorded from the rest, and each held-out frame is reenacted from its skeleton\n"
+    "      and sensor pose at the sensor's own view and compared with its colour image\n"
+    "      inside the person's mask: PSNR, SSIM over the union box, silhouette IoU per\n"
+    "      method (default thesis); SRC: any source with colour (synthetic:, oni:, tum:,\n"
+    "      clip:, rgbd:DIR with colour); --skeleton as reenact-capture record's (default\n"
+    "      source: the source's own; track: our depth tracker); --frames: read at most N;\n"
+    "      --images: ground truth | reenactment | error pictures per method and frame\n"
     "  reenact-eval segment [--scenario S[,S...]] [--step K] [--json FILE] [--noise on|off]\n"
     "      person segmentation against the synthetic ground-truth mask (default\n"
     "      turn-and-kick, every frame, Kinect-like depth noise on): IoU and ms per frame\n"
@@ -149,11 +163,13 @@ int main(int argc, char** argv) {
   spec.value_flags.merge(eval::RelocFlags());
   spec.value_flags.merge(eval::TrackerFlags());
   spec.value_flags.merge(eval::KinectReferenceFlags());
+  spec.value_flags.merge(eval::HoldoutFlags());
   return RunTool("reenact-eval", kUsage, spec,
                  {{"quality", Quality},
                   {"segment", Segment},
                   {"slam", eval::RunSlamCommand},
                   {"reloc", eval::RunRelocCommand},
-                  {"tracker", Tracker}},
+                  {"tracker", Tracker},
+                  {"holdout", eval::RunHoldoutCommand}},
                  argc, argv);
 }
