@@ -53,7 +53,7 @@ struct ProjectedAxis {
   Eigen::Vector2d p0, p1;     // pixels
   double rho0 = 0, rho1 = 0;  // projected radius at each end, pixels
   // Shaped parts: the clipped ends' axis parameters t (0 at a, 1 at b) and depths, and the
-  // largest semi-axis ratio max(width[k], depth[k]) of each ring.
+  // largest distance of each ring from the axis in radii (PartShape::RingReach).
   bool shaped = false;
   double t0 = 0, t1 = 1, z0 = 1, z1 = 1;
   std::array<double, kShapeRings> ring_scale{};

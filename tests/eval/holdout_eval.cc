@@ -271,12 +271,9 @@ void HoldoutOptions::Check() const {
 
 Expected<HoldoutRun> RunHoldout(const HoldoutOptions& options) {
   options.Check();
-  std::vector<const QualityMethod*> methods;
-  for (const std::string& name : options.methods) {
-    auto m = FindQualityMethod(name);
-    if (!m.ok()) return m.error();
-    methods.push_back(*m);
-  }
+  auto found = FindQualityMethods(options.methods);
+  if (!found.ok()) return found.error();
+  const std::vector<const QualityMethod*>& methods = *found;
   auto source = ReadSource(options);
   if (!source.ok()) return source.error();
   HoldoutRun run;

@@ -264,12 +264,9 @@ Expected<FrameEvaluation> QualityHarness::Evaluate(const QualityMethod& method, 
 
 Expected<QualityRun> RunQuality(const QualityOptions& options) {
   options.Check();
-  std::vector<const QualityMethod*> methods;
-  for (const std::string& name : options.methods) {
-    auto m = FindQualityMethod(name);
-    if (!m.ok()) return m.error();
-    methods.push_back(*m);
-  }
+  auto found = FindQualityMethods(options.methods);
+  if (!found.ok()) return found.error();
+  const std::vector<const QualityMethod*>& methods = *found;
   auto harness = QualityHarness::Create(options);
   if (!harness.ok()) return harness.error();
 

@@ -112,4 +112,14 @@ Expected<const QualityMethod*> FindQualityMethod(std::string_view name) {
   return MakeError("usage", "unknown method '" + std::string(name) + "'; known methods: " + known);
 }
 
+Expected<std::vector<const QualityMethod*>> FindQualityMethods(const std::vector<std::string>& names) {
+  std::vector<const QualityMethod*> methods;
+  for (const std::string& name : names) {
+    auto m = FindQualityMethod(name);
+    if (!m.ok()) return m.error();
+    methods.push_back(*m);
+  }
+  return methods;
+}
+
 }  // namespace reenact::eval

@@ -43,4 +43,7 @@ const std::vector<QualityMethod>& QualityMethods();
 // The method of that name; error "usage" naming the known methods otherwise.
 Expected<const QualityMethod*> FindQualityMethod(std::string_view name);
 
+// The methods of those names, in order; the first unknown name's error otherwise.
+Expected<std::vector<const QualityMethod*>> FindQualityMethods(const std::vector<std::string>& names);
+
 }  // namespace reenact::eval
