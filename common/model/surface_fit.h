@@ -51,7 +51,7 @@ struct SurfaceFitOptions {
   int min_points = 12;         // >= 1: points a node needs
   int min_frames = 2;          // >= 1: frames those points come from
   double min_factor = 0.5;     // (0, 1]: least rho kept (and least factor)
-  double max_factor = 1.8;     // >= 1: largest rho kept (and largest factor)
+  double max_factor = 3.0;     // >= 1: largest rho kept (and largest factor)
   double min_gain = 0.05;      // [0, 1): relative held-out gain a finer resolution needs
   int pixel_step = 1;          // >= 1: every pixel_step-th pixel in x and y is used
   double depth_scale_m = 0.001;  // metres per depth unit, > 0
