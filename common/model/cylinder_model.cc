@@ -42,6 +42,20 @@ bool PartShape::IsCylinder() const {
 
 bool PartShape::IsCircular() const { return width == depth && surface.IsEmpty(); }
 
+bool PartShape::IsValid() const {
+  for (int k = 0; k < kShapeRings; ++k)
+    if (!(std::isfinite(width[k]) && width[k] > 0 && std::isfinite(depth[k]) && depth[k] > 0))
+      return false;
+  if (surface.angles != 0 && (surface.angles < 3 || surface.angles > kMaxSurfaceAngles))
+    return false;
+  for (int k = 0; k < kShapeRings; ++k)
+    for (int j = 0; j < surface.angles; ++j)
+      if (!(std::isfinite(surface.radial[k][j]) && surface.radial[k][j] > 0)) return false;
+  for (double d : cap_depth)
+    if (!(std::isfinite(d) && d >= 0)) return false;
+  return true;
+}
+
 double PartShape::RingReach(int k) const {
   double factor = 1.0;
   for (int j = 0; j < surface.angles; ++j) factor = std::max(factor, surface.radial[k][j]);
@@ -132,10 +146,7 @@ std::optional<Cylinder> PoseCylinder(const Skeleton& skeleton, BodyPart part,
     (EndJoint(part) == ja ? c.a : c.b) += extension * outward;
   }
   c.shape = shapes[Index(part)];
-  for (int k = 0; k < kShapeRings; ++k)
-    REENACT_CHECK(std::isfinite(c.shape.width[k]) && c.shape.width[k] > 0 &&
-                      std::isfinite(c.shape.depth[k]) && c.shape.depth[k] > 0,
-                  "part shape rings must be finite and > 0");
+  REENACT_CHECK(c.shape.IsValid(), "part shape values must be finite and > 0 (PartShape::IsValid)");
   for (int end = 0; end < 2; ++end) {
     const int k = end == 0 ? 0 : kShapeRings - 1;
     c.shape.cap_depth[end] = c.shape.round_end[end] ? c.radius *
@@ -144,12 +155,6 @@ std::optional<Cylinder> PoseCylinder(const Skeleton& skeleton, BodyPart part,
                                                     : 0.0;
   }
   const PartSurface& surface = c.shape.surface;
-  REENACT_CHECK(surface.angles == 0 || (surface.angles >= 3 && surface.angles <= kMaxSurfaceAngles),
-                "a part surface has 0 or 3 to kMaxSurfaceAngles angles");
-  for (int k = 0; k < kShapeRings; ++k)
-    for (int j = 0; j < surface.angles; ++j)
-      REENACT_CHECK(std::isfinite(surface.radial[k][j]) && surface.radial[k][j] > 0,
-                    "part surface factors must be finite and > 0");
   if (!surface.IsEmpty()) {
     c.width_direction = PartReferenceDirection(skeleton, part);
     if (c.width_direction) return c;

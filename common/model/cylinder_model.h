@@ -74,6 +74,9 @@ struct PartShape {
 
   bool IsCylinder() const;  // every ring 1 x 1, no surface, flat ends
   bool IsCircular() const;  // width[k] == depth[k] at every ring (tapered at most), no surface
+  // Every ring value finite and > 0, the surface's angles 0 or in [3, kMaxSurfaceAngles] with
+  // its factors finite and > 0, the cap depths finite and >= 0.
+  bool IsValid() const;
   // Largest distance of ring k's drawn points from the axis, in radii: max(width, depth)
   // times the largest surface factor of the ring (1 without a surface).
   double RingReach(int k) const;

@@ -47,10 +47,7 @@ void CheckPart(const ReferencePart& part, size_t index) {
   const Cylinder& c = part.cylinder;
   REENACT_CHECK(c.a.allFinite() && c.b.allFinite() && std::isfinite(c.radius) && c.radius > 0,
                 name + "axis end points must be finite and the radius positive");
-  for (int k = 0; k < kShapeRings; ++k)
-    REENACT_CHECK(std::isfinite(c.shape.width[k]) && c.shape.width[k] > 0 &&
-                      std::isfinite(c.shape.depth[k]) && c.shape.depth[k] > 0,
-                  name + "shape rings must be finite and > 0");
+  REENACT_CHECK(c.shape.IsValid(), name + "shape values must be finite and > 0 (PartShape::IsValid)");
   REENACT_CHECK(!c.width_direction || c.width_direction->allFinite(),
                 name + "width direction must be finite");
   REENACT_CHECK(part.color.allFinite(), name + "colour must be finite");

@@ -212,10 +212,7 @@ ImageLabel8 RenderPartLabelMap(const std::array<std::optional<Cylinder>, kBodyPa
     const Cylinder& c = *cylinders[p];
     REENACT_CHECK(c.a.allFinite() && c.b.allFinite() && std::isfinite(c.radius) && c.radius > 0,
                   "part label map: cylinders must be finite with a positive radius");
-    for (int k = 0; k < kShapeRings; ++k)
-      REENACT_CHECK(std::isfinite(c.shape.width[k]) && c.shape.width[k] > 0 &&
-                        std::isfinite(c.shape.depth[k]) && c.shape.depth[k] > 0,
-                    "part label map: shape rings must be finite and > 0");
+    REENACT_CHECK(c.shape.IsValid(), "part label map: shape values must be finite and > 0");
     REENACT_CHECK(!c.width_direction || c.width_direction->allFinite(),
                   "part label map: width directions must be finite");
     if (c.Length() > 0) {

@@ -571,19 +571,8 @@ void Renderer::Draw(const FrameDraw& frame) {
     REENACT_CHECK(c.a.allFinite() && c.b.allFinite() && std::isfinite(c.radius) && c.radius > 0,
                   "cylinder end points must be finite and its radius positive");
     REENACT_CHECK(c.color.allFinite(), "cylinder colour must be finite");
-    for (int k = 0; k < kShapeRings; ++k)
-      REENACT_CHECK(std::isfinite(c.shape.width[k]) && c.shape.width[k] > 0 &&
-                        std::isfinite(c.shape.depth[k]) && c.shape.depth[k] > 0,
-                    "cylinder shape rings must be finite and > 0");
-    REENACT_CHECK(c.shape.surface.angles == 0 ||
-                      (c.shape.surface.angles >= 3 && c.shape.surface.angles <= kMaxSurfaceAngles),
-                  "cylinder surface angles must be 0 or in [3, kMaxSurfaceAngles]");
-    for (int k = 0; k < kShapeRings; ++k)
-      for (int j = 0; j < c.shape.surface.angles; ++j)
-        REENACT_CHECK(std::isfinite(c.shape.surface.radial[k][j]) && c.shape.surface.radial[k][j] > 0,
-                      "cylinder surface factors must be finite and > 0");
-    for (double depth : c.shape.cap_depth)
-      REENACT_CHECK(std::isfinite(depth) && depth >= 0, "cylinder cap depths must be finite and >= 0");
+    REENACT_CHECK(c.shape.IsValid(),
+                  "cylinder shape values must be finite and > 0 (PartShape::IsValid)");
     REENACT_CHECK(!c.width_direction || c.width_direction->allFinite(),
                   "cylinder width direction must be finite");
     REENACT_CHECK(
