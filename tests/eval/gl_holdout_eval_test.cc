@@ -48,8 +48,13 @@ QualityHarness& Quality() {
 
 struct Means {
   double psnr_db = 0, iou = 0;
+  double squared_error = 0;  // per-pixel mean squared error, summed over the frames
   int n = 0;
 };
+
+// PSNR (dB) of a mean squared error, and back (8-bit peak).
+double SquaredErrorOf(double psnr_db) { return 255.0 * 255.0 * std::pow(10.0, -psnr_db / 10); }
+double PsnrOf(double squared_error) { return 10 * std::log10(255.0 * 255.0 / squared_error); }
 
 TEST(GlHoldoutEval, AgreesWithQualityAtTheSensorsView) {
   // Every 15th frame held out, no neighbours: 15, 30, ..., 165, each textured from the 169
@@ -80,6 +85,7 @@ TEST(GlHoldoutEval, AgreesWithQualityAtTheSensorsView) {
     for (const auto& [means, c] : {std::pair{&holdout[f.method], &f.comparison},
                                    std::pair{&quality[f.method], &e->comparison}}) {
       means->psnr_db += c->psnr_db;
+      means->squared_error += SquaredErrorOf(c->psnr_db);
       means->iou += c->iou;
       ++means->n;
     }
@@ -94,14 +100,16 @@ TEST(GlHoldoutEval, AgreesWithQualityAtTheSensorsView) {
     // PSNR: two differences, of opposite sign. Quality's view 0 looks from the sensor's
     // position at the subject's centre, so the stored view is resampled onto a re-aimed
     // pixel grid, while holdout renders on the sensor's own grid: where both texture from
-    // the same still pose (frames 15, 120, 150) holdout measured 0.4-0.6 dB higher. And
-    // holdout textures from another frame, 1/30 s away or a still pose: where the leg
-    // kicks, limbs move centimetres per frame and it measured up to 2.9 dB lower (frame 90).
-    // Over the 11 frames the means measured -0.4 to +0.7 dB apart for the ten methods; the
-    // bound, 1.5 dB, is twice that: a third of the kick frames' worst single loss, and far
-    // below the 3-10 dB that a wrong pose, camera or crop costs (the empty-image floor of
-    // gl_quality_eval_test.cc).
-    EXPECT_NEAR(h.psnr_db / h.n, q.psnr_db / q.n, 1.5);
+    // the same still pose (frames 15, 120, 150) holdout's squared error measured 20-40 lower
+    // (per pixel, 0-255 squared) for every method. In dB that is 0.4-0.6 for the thesis but
+    // 2-5 for `surface`, whose own error is that much smaller, so the frames' squared errors
+    // are compared, as the PSNR of their mean. And holdout textures from another frame, 1/30 s
+    // away or a still pose: where the leg kicks, limbs move centimetres per frame and it
+    // measured up to 2.9 dB lower (frame 90). Over the 11 frames the PSNRs of the mean squared
+    // errors measured -0.6 to +0.8 dB apart for the eleven methods; the bound, 1.5 dB, is
+    // about twice that, and far below the 3-10 dB that a wrong pose, camera or crop costs
+    // (the empty-image floor of gl_quality_eval_test.cc).
+    EXPECT_NEAR(PsnrOf(h.squared_error / h.n), PsnrOf(q.squared_error / q.n), 1.5);
     // IoU: the per-frame differences above average out to 0.005 at most when measured; four
     // times that.
     EXPECT_NEAR(h.iou / h.n, q.iou / q.n, 0.02);
