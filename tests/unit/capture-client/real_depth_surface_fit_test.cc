@@ -7,18 +7,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
 #include <numbers>
 
-#include "capture-client/skeleton/skeleton_track_spec.h"
-#include "capture-client/source/frame_source.h"
 #include "common/model/surface_fit.h"
 #include "common/render/reference_renderer.h"
+#include "tests/unit/capture-client/utd_mhad_sequence.h"
 
 namespace reenact::capture {
 namespace {
-
-namespace fs = std::filesystem;
 
 struct RealFrame {
   Skeleton skeleton;  // sensor frame
@@ -28,19 +24,15 @@ struct RealFrame {
 
 // Every frame of a utd-mhad sequence; empty when the data are absent.
 std::vector<RealFrame> ReadSequence(const std::string& sequence, PinholeCamera& camera) {
-  const fs::path dir = fs::path(REENACT_SHARED_DATA_DIR) / "utd-mhad" / sequence;
-  if (!fs::exists(dir)) return {};
-  auto source = OpenFrameSource("rgbd:" + dir.string() + "?mirrored=1");
-  EXPECT_TRUE(source.ok()) << source.error().message;
-  auto reference = LoadSkeletonTrack("kinect:" + (dir / "skeleton.txt").string());
-  EXPECT_TRUE(reference.ok()) << reference.error().message;
-  if (!source.ok() || !reference.ok()) return {};
-  camera = (*source)->info().depth_camera;
+  auto data = testing::OpenUtdMhadSequence(sequence);
+  if (!data) return {};
+  auto& source = data->source;
+  camera = source->info().depth_camera;
   std::vector<RealFrame> out;
   for (int64_t i = 0;; ++i) {
-    auto frame = (*source)->Next();
+    auto frame = source->Next();
     if (!frame.ok() || !frame->has_value()) break;
-    const auto skeleton = reference->ForFrame(i, (**frame).timestamp_s);
+    const auto skeleton = data->reference.ForFrame(i, (**frame).timestamp_s);
     if (!skeleton) continue;
     RealFrame f{*skeleton, (**frame).depth, ImageGray8((**frame).depth.width, (**frame).depth.height, 1, 0)};
     for (size_t k = 0; k < f.depth.data.size(); ++k) f.mask.data[k] = f.depth.data[k] > 0 ? 255 : 0;

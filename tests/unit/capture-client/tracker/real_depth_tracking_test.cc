@@ -7,16 +7,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
 
 #include "capture-client/skeleton/skeleton_track_spec.h"
 #include "capture-client/source/frame_source.h"
 #include "capture-client/tracker/skeleton_tracker.h"
+#include "tests/unit/capture-client/utd_mhad_sequence.h"
 
 namespace reenact::capture {
 namespace {
 
-namespace fs = std::filesystem;
 
 struct TrackedFrame {
   std::optional<Skeleton> tracked;  // sensor frame
@@ -25,22 +24,19 @@ struct TrackedFrame {
 
 // Every frame of a utd-mhad sequence through one tracker; empty when the data are absent.
 std::vector<TrackedFrame> TrackSequence(const std::string& sequence) {
-  const fs::path dir = fs::path(REENACT_SHARED_DATA_DIR) / "utd-mhad" / sequence;
-  if (!fs::exists(dir)) return {};
-  auto source = OpenFrameSource("rgbd:" + dir.string() + "?mirrored=1");
-  EXPECT_TRUE(source.ok()) << source.error().message;
-  auto reference = LoadSkeletonTrack("kinect:" + (dir / "skeleton.txt").string());
-  EXPECT_TRUE(reference.ok()) << reference.error().message;
-  if (!source.ok() || !reference.ok()) return {};
-  const SensorInfo& info = (*source)->info();
+  auto data = testing::OpenUtdMhadSequence(sequence);
+  if (!data) return {};
+  auto& source = data->source;
+  auto& reference = data->reference;
+  const SensorInfo& info = source->info();
   SkeletonTracker tracker(info.depth_camera, info.depth_scale_m);
   std::vector<TrackedFrame> out;
   for (int64_t i = 0;; ++i) {
-    auto frame = (*source)->Next();
+    auto frame = source->Next();
     EXPECT_TRUE(frame.ok());
     if (!frame.ok() || !frame->has_value()) break;
     const SensorFrame& f = **frame;
-    const auto ref = reference->ForFrame(i, f.timestamp_s);
+    const auto ref = reference.ForFrame(i, f.timestamp_s);
     EXPECT_TRUE(ref.has_value()) << "frame " << i;
     if (!ref) break;
     out.push_back({tracker.Track(f.depth, std::nullopt, std::nullopt, f.timestamp_s).skeleton,
