@@ -33,9 +33,17 @@ constexpr const char* kUsage =
     "      without --headless: the AR view in a window (space, arrows, +/-, s, c, t, q)\n"
     "  --steady: steady motion (flagged skeletons interpolated across, joints One Euro filtered,\n"
     "            for the pose shown and the stored frames alike)\n"
-    "  --texturing NAME: thesis | per-part | occlusion | blend | shape | profile | relit\n"
-    "      (default relit)\n"
-    "      (viewer-client/play/texturing_presets.h; docs/quality.md compares them)\n";
+    "  --texturing NAME: ";
+
+// The usage with the texturing presets and the default as texturing_presets.h defines them.
+std::string Usage() {
+  std::string usage = kUsage;
+  usage += viewer::TexturingPresetNames();
+  usage += " (default ";
+  usage += viewer::kDefaultTexturingPreset;
+  usage += ")\n      (viewer-client/play/texturing_presets.h; docs/quality.md compares them)\n";
+  return usage;
+}
 
 int Fail(const Error& e) { return ReportFailure("reenact-viewer", e); }
 
@@ -281,5 +289,5 @@ int main(int argc, char** argv) {
       {"server", "near", "radius-m", "limit", "camera", "orbit-deg", "out", "frames", "width",
        "height", "cache", "calibration", "clip-clock", "texturing"},
       {"json", "headless", "bare", "skeleton", "no-mp4", "masks", "no-status", "steady"}};
-  return RunTool("reenact-viewer", kUsage, spec, {{"browse", Browse}, {"play", Play}}, argc, argv);
+  return RunTool("reenact-viewer", Usage(), spec, {{"browse", Browse}, {"play", Play}}, argc, argv);
 }
