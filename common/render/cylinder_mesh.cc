@@ -122,13 +122,7 @@ Eigen::Vector3d ShapedUnitNormal(const PartShape& shape, const Eigen::Vector3d& 
   }
   const double c = unit_normal.x(), sn = unit_normal.y();
   const PartSurface& surface = shape.surface;
-  if (surface.IsEmpty()) {
-    const double w = shape.width[k], d = shape.depth[k];
-    const double w_slope = RingSlope(shape.width, k), d_slope = RingSlope(shape.depth, k);
-    return Eigen::Vector3d(d * c, w * sn, -(w * d_slope * sn * sn + d * w_slope * c * c));
-  }
   const double phi = std::atan2(sn, c);
-  const double half_step = std::numbers::pi / surface.angles;
   std::array<double, kShapeRings> w_eff{}, d_eff{};
   for (int r = 0; r < kShapeRings; ++r) {
     const double f = surface.FactorAt(r, phi);
@@ -136,9 +130,12 @@ Eigen::Vector3d ShapedUnitNormal(const PartShape& shape, const Eigen::Vector3d& 
     d_eff[r] = f * shape.depth[r];
   }
   const double f = surface.FactorAt(k, phi);
-  const double f_phi =
-      (surface.FactorAt(k, phi + half_step) - surface.FactorAt(k, phi - half_step)) /
-      (2 * half_step);
+  double f_phi = 0;
+  if (!surface.IsEmpty()) {
+    const double half_step = std::numbers::pi / surface.angles;
+    f_phi = (surface.FactorAt(k, phi + half_step) - surface.FactorAt(k, phi - half_step)) /
+            (2 * half_step);
+  }
   const double w = shape.width[k], d = shape.depth[k];
   const double px = f_phi * w * c - f * w * sn, py = f_phi * d * sn + f * d * c;
   const double zx = RingSlope(w_eff, k) * c, zy = RingSlope(d_eff, k) * sn;

@@ -1,7 +1,6 @@
 #include "tests/eval/holdout_cli.h"
 
 #include <iostream>
-#include <sstream>
 
 #include "tests/eval/quality_cli.h"
 #include "tests/eval/quality_eval.h"
@@ -55,17 +54,9 @@ Expected<HoldoutCommand> ParseHoldoutCommand(const CommandLine& cl) {
     o.max_frames = *frames;
   }
   if (auto text = cl.Get("methods")) {
-    std::vector<std::string> names;
-    std::stringstream ss(*text);
-    for (std::string item; std::getline(ss, item, ',');) names.push_back(item);
-    if (text->empty() || text->back() == ',') names.emplace_back();
-    for (const std::string& name : names) {
-      if (name.empty())
-        return MakeError("usage", "--methods: empty item in '" + *text +
-                                      "' (give a comma-separated list without gaps)");
-      if (auto m = FindQualityMethod(name); !m.ok()) return m.error();
-    }
-    o.methods = names;
+    auto list = ParseMethodList(*text);
+    if (!list.ok()) return list.error();
+    o.methods = *list;
   }
   if (auto dir = cl.Get("images")) {
     if (Status s = CheckCreatableFolder("images", *dir); !s.ok()) return s.error();

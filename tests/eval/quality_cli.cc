@@ -57,6 +57,13 @@ fs::path NearestExisting(const fs::path& path) {
 
 }  // namespace
 
+Expected<std::vector<std::string>> ParseMethodList(const std::string& text) {
+  auto list = SplitList("methods", text);
+  if (!list.ok()) return list.error();
+  if (auto found = FindQualityMethods(*list); !found.ok()) return found.error();
+  return list;
+}
+
 std::set<std::string> QualityFlags() {
   return {"scenario", "body",   "methods",     "views",          "step",      "json",
           "markdown", "images", "image-pairs", "skeleton-noise", "skeletons", "lighting"};
@@ -104,10 +111,8 @@ Expected<QualityCommand> ParseQualityCommand(const CommandLine& cl) {
   o.body = cl.GetOr("body", "");
   if (o.body == "procedural") o.body.clear();
   if (auto text = cl.Get("methods")) {
-    auto list = SplitList("methods", *text);
+    auto list = ParseMethodList(*text);
     if (!list.ok()) return list.error();
-    for (const std::string& name : *list)
-      if (auto m = FindQualityMethod(name); !m.ok()) return m.error();
     o.methods = *list;
   }
   if (auto text = cl.Get("views")) {

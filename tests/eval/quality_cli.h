@@ -11,6 +11,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "common/cli/command_line.h"
 #include "common/error/expected.h"
@@ -33,6 +34,10 @@ std::set<std::string> QualityFlags();
 // --markdown file that cannot be written (missing folder, no permission, a directory) or an
 // --images folder that cannot be created.
 Expected<QualityCommand> ParseQualityCommand(const CommandLine& command_line);
+
+// A comma-separated list of quality methods (--methods), each known: error "usage" for an
+// empty list, an empty item or an unknown name.
+Expected<std::vector<std::string>> ParseMethodList(const std::string& text);
 
 // Whether a file could be written at path without creating folders: error "io" naming the
 // flag and the reason otherwise. Nothing is created.

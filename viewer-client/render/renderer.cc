@@ -50,7 +50,7 @@ struct Renderer::Impl {
   struct CylinderProgram {
     GlProgram program;
     GLint projection = -1, model = -1, normal = -1, ring_width = -1, ring_depth = -1,
-          ring_width_slope = -1, ring_depth_slope = -1, surface = -1, surface_angles = -1, cap_depth = -1, textured = -1, color = -1, stored = -1,
+          surface = -1, surface_angles = -1, cap_depth = -1, textured = -1, color = -1, stored = -1,
           intrinsics = -1, size = -1, relight = -1, light = -1, stored_light = -1;
     GLint mode = -1, ranked = -1, weight = -1, label = -1,
           depth_tolerance = -1;  // visible variants only
@@ -165,8 +165,6 @@ Status Renderer::Impl::MakeCylinderProgram(int variant) {
   c.normal = UniformLocation(p, "u_normal_from_cylinder");
   c.ring_width = UniformLocation(p, "u_ring_width");
   c.ring_depth = UniformLocation(p, "u_ring_depth");
-  c.ring_width_slope = UniformLocation(p, "u_ring_width_slope");
-  c.ring_depth_slope = UniformLocation(p, "u_ring_depth_slope");
   c.surface = UniformLocation(p, "u_surface");
   c.surface_angles = UniformLocation(p, "u_surface_angles");
   c.cap_depth = UniformLocation(p, "u_cap_depth");
@@ -366,17 +364,13 @@ void Renderer::Impl::SetShapeUniforms(const CylinderProgram& program, const Cyli
   glUniformMatrix4fv(program.model, 1, GL_FALSE, model.data());
   const Eigen::Matrix3f normal = NormalFromUnitCylinder(viewer_from_cylinder).cast<float>();
   glUniformMatrix3fv(program.normal, 1, GL_FALSE, normal.data());
-  std::array<float, kShapeRings> width{}, depth{}, width_slope{}, depth_slope{};
+  std::array<float, kShapeRings> width{}, depth{};
   for (int k = 0; k < kShapeRings; ++k) {
     width[k] = static_cast<float>(c.shape.width[k]);
     depth[k] = static_cast<float>(c.shape.depth[k]);
-    width_slope[k] = static_cast<float>(RingSlope(c.shape.width, k));
-    depth_slope[k] = static_cast<float>(RingSlope(c.shape.depth, k));
   }
   glUniform1fv(program.ring_width, kShapeRings, width.data());
   glUniform1fv(program.ring_depth, kShapeRings, depth.data());
-  glUniform1fv(program.ring_width_slope, kShapeRings, width_slope.data());
-  glUniform1fv(program.ring_depth_slope, kShapeRings, depth_slope.data());
   const PartSurface& surface = c.shape.surface;
   std::array<float, kShapeRings * kMaxSurfaceAngles> radial{};
   for (int k = 0; k < kShapeRings; ++k)

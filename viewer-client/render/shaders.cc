@@ -16,8 +16,6 @@ uniform mat4 u_viewer_from_cylinder;
 uniform mat3 u_normal_from_cylinder;
 uniform float u_ring_width[RINGS];
 uniform float u_ring_depth[RINGS];
-uniform float u_ring_width_slope[RINGS];
-uniform float u_ring_depth_slope[RINGS];
 uniform float u_surface[RINGS * MAX_ANGLES];
 uniform int u_surface_angles;
 uniform vec2 u_cap_depth;
@@ -51,24 +49,22 @@ void main() {
   } else {
     float c = a_normal.x;
     float sn = a_normal.y;
-    if (u_surface_angles == 0) {
-      n = vec3(d * c, w * sn,
-               -(w * u_ring_depth_slope[k] * sn * sn + d * u_ring_width_slope[k] * c * c));
-    } else {
-      float phi = atan(sn, c);
+    float phi = atan(sn, c);
+    int lo = max(k - 1, 0);
+    int hi = min(k + 1, RINGS - 1);
+    float scale = float(RINGS - 1) / float(hi - lo);
+    float f_hi = SurfaceFactor(hi, phi);
+    float f_lo = SurfaceFactor(lo, phi);
+    float wz = (f_hi * u_ring_width[hi] - f_lo * u_ring_width[lo]) * scale;
+    float dz = (f_hi * u_ring_depth[hi] - f_lo * u_ring_depth[lo]) * scale;
+    float f_phi = 0.0;
+    if (u_surface_angles > 0) {
       float h = 3.141592653589793 / float(u_surface_angles);
-      int lo = max(k - 1, 0);
-      int hi = min(k + 1, RINGS - 1);
-      float scale = float(RINGS - 1) / float(hi - lo);
-      float f_hi = SurfaceFactor(hi, phi);
-      float f_lo = SurfaceFactor(lo, phi);
-      float wz = (f_hi * u_ring_width[hi] - f_lo * u_ring_width[lo]) * scale;
-      float dz = (f_hi * u_ring_depth[hi] - f_lo * u_ring_depth[lo]) * scale;
-      float f_phi = (SurfaceFactor(k, phi + h) - SurfaceFactor(k, phi - h)) / (2.0 * h);
-      float px = f_phi * w * c - s * w * sn;
-      float py = f_phi * d * sn + s * d * c;
-      n = vec3(py, -px, px * dz * sn - py * wz * c);
+      f_phi = (SurfaceFactor(k, phi + h) - SurfaceFactor(k, phi - h)) / (2.0 * h);
     }
+    float px = f_phi * w * c - s * w * sn;
+    float py = f_phi * d * sn + s * d * c;
+    n = vec3(py, -px, px * dz * sn - py * wz * c);
   }
   vec4 p = u_viewer_from_cylinder * vec4(a_position.x * s * w, a_position.y * s * d, z, 1.0);
   v_position = p.xyz;

@@ -8,11 +8,12 @@
 namespace reenact::viewer::shaders {
 
 // Cylinder: a_position/a_normal of the unit cylinder (common/render/cylinder_mesh.h) with `rings`
-// (kShapeRings) rings; the vertex program applies the part's shape and normal rule of
-// cylinder_mesh.h: ring k = round(z (rings - 1)), position (u_ring_width[k] x, u_ring_depth[k] y,
-// z) placed by u_viewer_from_cylinder; side normal (D c, W s, -(W D' s^2 + D W' c^2)) with W, D the
-// ring's width and depth, W', D' u_ring_width_slope[k], u_ring_depth_slope[k] (RingSlope), cap
-// normal as given; both into the viewer frame by u_normal_from_cylinder (NormalFromUnitCylinder).
+// (kShapeRings) rings; the vertex program applies the part's shape and normal rules of
+// cylinder_mesh.h (ShapedUnitPosition, ShapedUnitNormal): ring k = round(z (rings - 1)), the
+// rings' widths and depths u_ring_width, u_ring_depth, the surface's nodes u_surface (ring k's
+// node j at k max_angles + j, u_surface_angles of them, 0 for none; PartSurface::FactorAt) and
+// the rounded ends' depths u_cap_depth; placed by u_viewer_from_cylinder, normals into the
+// viewer frame by u_normal_from_cylinder (NormalFromUnitCylinder).
 // The fragment program is built per variant by CylinderFragment: `candidates`
 // (1..kMaxTextureCandidates) texture candidates, `visibility` off for TexturingMode::kFirst (one candidate, no visibility texture) and
 // on for the visible modes (u_mode 1 kFirstVisible, 2 kBlendVisible), so that the thesis path pays
