@@ -10,6 +10,7 @@ PACKAGES=(
   libtinygltf-dev libstb-dev
   libglfw3-dev libepoxy-dev libegl-dev libgl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri
   ffmpeg libgtest-dev libgmock-dev libbenchmark-dev
+  postgresql postgis postgresql-15-postgis-3 libpq-dev
   nginx-light
 )
 

@@ -24,7 +24,7 @@ Expected<int> SchemaVersion(sqlite::Database& db) {
   return static_cast<int>(stmt->ColumnInt(0));
 }
 
-Status ApplyMigrations(sqlite::Database& db, const std::vector<MigrationFile>& files) {
+Status CheckMigrationSequence(const std::vector<MigrationFile>& files) {
   for (size_t i = 0; i < files.size(); ++i) {
     auto version = MigrationVersion(files[i].name);
     if (!version) return version.error();
@@ -34,15 +34,21 @@ Status ApplyMigrations(sqlite::Database& db, const std::vector<MigrationFile>& f
                                                std::to_string(i + 1));
     }
   }
+  return {};
+}
+
+Error SchemaTooNew(const std::string& database, int version, int newest) {
+  return MakeError("schema_too_new", database + " has schema version " + std::to_string(version) +
+                                         " but this reenact-server knows only up to version " +
+                                         std::to_string(newest) + "; run a newer reenact-server");
+}
+
+Status ApplyMigrations(sqlite::Database& db, const std::vector<MigrationFile>& files) {
+  if (Status s = CheckMigrationSequence(files); !s) return s;
   auto current = SchemaVersion(db);
   if (!current) return current.error();
   const int newest = static_cast<int>(files.size());
-  if (*current > newest) {
-    return MakeError("schema_too_new",
-                     "database " + db.path() + " has schema version " + std::to_string(*current) +
-                         " but this reenact-server knows only up to version " +
-                         std::to_string(newest) + "; run a newer reenact-server");
-  }
+  if (*current > newest) return SchemaTooNew("database " + db.path(), *current, newest);
   for (int version = *current + 1; version <= newest; ++version) {
     const MigrationFile& file = files[version - 1];
     auto tx = sqlite::Transaction::Begin(db);

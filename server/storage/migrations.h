@@ -15,6 +15,14 @@ namespace reenact::server {
 // The schema version a file name declares ("0003_x.sql" -> 3), or an error for a bad name.
 Expected<int> MigrationVersion(const char* file_name);
 
+// Checks that the files' names declare versions 1, 2, 3, ... in order (code
+// "invalid_argument" otherwise).
+Status CheckMigrationSequence(const std::vector<MigrationFile>& files);
+
+// The error for a database (described as `database`, e.g. "database FILE") whose schema
+// version is newer than the newest this binary knows.
+Error SchemaTooNew(const std::string& database, int version, int newest);
+
 // The database's current schema version (0 for a new file).
 Expected<int> SchemaVersion(sqlite::Database& db);
 

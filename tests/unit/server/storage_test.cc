@@ -172,26 +172,6 @@ TEST(Sqlite, MissingDirectoryIsAClearError) {
   EXPECT_NE(storage.error().message.find("does not exist"), std::string::npos);
 }
 
-TEST(Sqlite, ClipCreationIsAllOrNothing) {
-  TempDir dir;
-  auto storage = OpenSqliteStorage((dir.path() / "db.sqlite").string());
-  ASSERT_TRUE(storage.ok());
-  auto user = storage->metadata->AddUser("u", std::string(64, 'a'));
-  ASSERT_TRUE(user.ok());
-  NewClip clip;
-  clip.record.id = "c1";
-  clip.record.owner_id = user->id;
-  clip.manifest_json = "{}";
-  // Two parts with the same index violate the primary key after the clip row was inserted.
-  clip.parts = {{0, 1, std::string(64, 'b')}, {0, 1, std::string(64, 'c')}};
-  EXPECT_FALSE(storage->metadata->CreateClip(clip).ok());
-  auto found = storage->metadata->GetClip("c1");
-  ASSERT_TRUE(found.ok());
-  EXPECT_FALSE(found->has_value());
-  clip.parts.pop_back();
-  EXPECT_TRUE(storage->metadata->CreateClip(clip).ok());
-}
-
 TEST(BlobStore, PutReplaceGetAndDeleteByPrefix) {
   TempDir dir;
   auto storage = OpenSqliteStorage((dir.path() / "db.sqlite").string());
