@@ -61,3 +61,6 @@ CREATE TABLE blobs (
   key  TEXT COLLATE "C" PRIMARY KEY,
   data BYTEA NOT NULL
 );
+-- Payloads are compressed already (images, Draco); kept uncompressed out of line, a range read
+-- (substring) fetches only the TOAST chunks it covers.
+ALTER TABLE blobs ALTER COLUMN data SET STORAGE EXTERNAL;

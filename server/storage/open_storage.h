@@ -1,6 +1,7 @@
 #pragma once
-// Opens the embedded storage of a server: the SQLite metadata store (applying migrations)
-// and the SQLite blob store, both in one database file.
+// Opens the storage of a server: by default the embedded SQLite metadata store (applying
+// migrations) and the SQLite blob store, both in one database file; or, for a PostgreSQL URL,
+// the metadata and blob stores in that PostgreSQL/PostGIS database.
 
 #include <memory>
 #include <string>
@@ -15,7 +16,8 @@ struct StorageOptions {
   // true (default): every commit is fsynced before it returns (PRAGMA synchronous=FULL), so
   // a 204 means stored even across a power failure. false: synchronous=NORMAL, a commit
   // survives a crash of the process but the last commits may be lost on power failure (for
-  // hosts whose disks have a battery-backed write cache).
+  // hosts whose disks have a battery-backed write cache). SQLite only: PostgreSQL commits as
+  // its server is configured.
   bool fsync_each_commit = true;
 };
 
@@ -29,5 +31,17 @@ struct Storage {
 // Every connection of both stores commits as `options` says.
 Expected<Storage> OpenSqliteStorage(const std::string& db_path,
                                     const StorageOptions& options = {});
+
+// Whether `db` names a PostgreSQL database: it starts with "postgresql://" or "postgres://".
+bool IsPostgresUrl(const std::string& db);
+
+// Both stores in the PostgreSQL database at `url` (postgresql://user:password@host:port/db),
+// applying migrations. Codes: "invalid_argument" for a malformed URL, "io" when the server
+// cannot be reached or refuses the login (one line naming the target, never the password),
+// "schema_too_new", "migration_failed", "storage".
+Expected<Storage> OpenPostgresStorage(const std::string& url);
+
+// OpenPostgresStorage for a PostgreSQL URL, else OpenSqliteStorage of the file `db`.
+Expected<Storage> OpenStorage(const std::string& db, const StorageOptions& options = {});
 
 }  // namespace reenact::server

@@ -23,13 +23,9 @@
 namespace reenact::server {
 namespace {
 
+using testing::Engine;
+using testing::EngineName;
 using testing::TempDir;
-
-enum class Engine { kSqlite, kPostgres };
-
-std::string EngineName(const ::testing::TestParamInfo<Engine>& info) {
-  return info.param == Engine::kSqlite ? "Sqlite" : "Postgres";
-}
 
 // Metres along a great circle of `degrees` of arc on the store's sphere.
 double ArcM(double degrees) { return kEarthMeanRadiusM * degrees * std::numbers::pi / 180.0; }

@@ -1,6 +1,7 @@
 #pragma once
 // Shared helpers of the server tests: a temporary directory, valid clips built through
-// proto's manifest writer, and a service over real SQLite storage with two users.
+// proto's manifest writer, storage on either engine, and a service over real storage (SQLite,
+// or PostgreSQL in the tests' throwaway cluster) with two users.
 
 #include <gtest/gtest.h>
 
@@ -16,6 +17,7 @@
 #include "server/storage/blob_store.h"
 #include "server/storage/open_storage.h"
 #include "tests/support/temp_dir.h"
+#include "tests/unit/server/postgres_test_cluster.h"
 
 namespace reenact::server::testing {
 
@@ -65,11 +67,31 @@ inline TestClip MakeTestClip(double lat, double lon, int frames = 3,
   return clip;
 }
 
-// Real storage in a temp dir, a metrics sink, and two users with their tokens.
+// The storage engines tests run on, as a test parameter.
+enum class Engine { kSqlite, kPostgres };
+
+inline std::string EngineName(const ::testing::TestParamInfo<Engine>& info) {
+  return info.param == Engine::kSqlite ? "Sqlite" : "Postgres";
+}
+
+// New empty storage on `engine`: a SQLite file in `dir`, or a fresh database of the PostgreSQL
+// test cluster (postgres_test_cluster.h; code "unavailable" where none can be started).
+inline Expected<Storage> OpenTestStorage(Engine engine, const TempDir& dir) {
+  if (engine == Engine::kSqlite) return OpenSqliteStorage((dir.path() / "db.sqlite").string());
+  auto url = NewPostgresTestDatabase();
+  if (!url) return url.error();
+  return OpenPostgresStorage(*url);
+}
+
+// Real storage on engine() (SQLite unless a parameterized fixture says otherwise), a metrics
+// sink, and two users with their tokens. Skips where the engine's server is not installed.
 class ServiceFixture : public ::testing::Test {
  protected:
+  virtual Engine engine() const { return Engine::kSqlite; }
+
   void SetUp() override {
-    auto opened = OpenSqliteStorage((dir_.path() / "db.sqlite").string());
+    auto opened = OpenTestStorage(engine(), dir_);
+    if (!opened && opened.error().code == "unavailable") GTEST_SKIP() << opened.error().message;
     ASSERT_TRUE(opened.ok()) << opened.error().message;
     storage_ = std::move(*opened);
     context_ = std::make_unique<ServiceContext>(
@@ -146,6 +168,15 @@ class ServiceFixture : public ::testing::Test {
   std::unique_ptr<ServiceContext> context_;
   std::string alice_;
   std::string bob_;
+};
+
+// ServiceFixture on the engine of the test parameter:
+//   class RoutesTest : public EngineServiceFixture {};
+//   INSTANTIATE_TEST_SUITE_P(Engines, RoutesTest,
+//                            ::testing::Values(Engine::kSqlite, Engine::kPostgres), EngineName);
+class EngineServiceFixture : public ServiceFixture, public ::testing::WithParamInterface<Engine> {
+ protected:
+  Engine engine() const override { return GetParam(); }
 };
 
 }  // namespace reenact::server::testing

@@ -1,4 +1,4 @@
-// Storage on real SQLite files in a temp dir: migrations, transactions, blobs.
+// Storage on real SQLite files in a temp dir: migrations, transactions, file modes.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
@@ -170,24 +170,6 @@ TEST(Sqlite, MissingDirectoryIsAClearError) {
   ASSERT_FALSE(storage.ok());
   EXPECT_EQ(storage.error().code, "io");
   EXPECT_NE(storage.error().message.find("does not exist"), std::string::npos);
-}
-
-TEST(BlobStore, PutReplaceGetAndDeleteByPrefix) {
-  TempDir dir;
-  auto storage = OpenSqliteStorage((dir.path() / "db.sqlite").string());
-  ASSERT_TRUE(storage.ok());
-  BlobStore& blobs = *storage->blobs;
-  const std::string binary("a\0b\xff", 4);
-  ASSERT_TRUE(blobs.Put("ab/frames/0", binary).ok());
-  ASSERT_TRUE(blobs.Put("ab/map", "old").ok());
-  ASSERT_TRUE(blobs.Put("ab/map", "new").ok());
-  ASSERT_TRUE(blobs.Put("abc/map", "other clip").ok());
-  EXPECT_EQ(**blobs.Get("ab/frames/0"), binary);
-  EXPECT_EQ(**blobs.Get("ab/map"), "new");
-  ASSERT_TRUE(blobs.DeletePrefix("ab/").ok());
-  EXPECT_FALSE(blobs.Get("ab/frames/0")->has_value());
-  EXPECT_FALSE(blobs.Get("ab/map")->has_value());
-  EXPECT_EQ(**blobs.Get("abc/map"), "other clip");
 }
 
 }  // namespace
