@@ -18,14 +18,16 @@ namespace reenact::server {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: reenact-server serve --db FILE [--listen HOST:PORT] [--threads N]\n"
+    "usage: reenact-server serve --db FILE|URL [--listen HOST:PORT] [--threads N]\n"
     "                            [--max-connections N] [--rate-limit PER_S] [--rate-burst N]\n"
     "                            [--header-timeout-s S] [--handler-threads N]\n"
     "                            [--max-connections-per-address N] [--max-body-mb N]\n"
     "                            [--min-transfer-rate BYTES_PER_S] [--min-rate-grace-s S]\n"
-    "       reenact-server user add NAME --db FILE\n"
-    "       reenact-server token add NAME --db FILE\n"
-    "       reenact-server token revoke NAME --db FILE\n";
+    "       reenact-server user add NAME --db FILE|URL\n"
+    "       reenact-server token add NAME --db FILE|URL\n"
+    "       reenact-server token revoke NAME --db FILE|URL\n"
+    "--db: a SQLite database file (created if absent), or a PostgreSQL URL\n"
+    "      postgresql://USER:PASSWORD@HOST:PORT/DATABASE (PostGIS installed there)\n";
 
 struct Args {
   std::vector<std::string> positional;
@@ -89,7 +91,7 @@ bool IntegerFlag(const Args& args, const std::string& flag, double lo, double hi
 int Serve(const Args& args, std::ostream& out, std::ostream& err) {
   if (!args.positional.empty()) return Usage(err, "unexpected argument " + args.positional[0]);
   auto db = args.flags.find("--db");
-  if (db == args.flags.end()) return Usage(err, "serve needs --db FILE");
+  if (db == args.flags.end()) return Usage(err, "serve needs --db FILE|URL");
   ServerOptions options;
   if (auto listen = args.flags.find("--listen"); listen != args.flags.end()) {
     auto address = ParseListenAddress(listen->second);
@@ -128,7 +130,7 @@ int Serve(const Args& args, std::ostream& out, std::ostream& err) {
     err << "reenact-server: " << limit.error().message << std::endl;
     return 2;
   }
-  auto storage = OpenSqliteStorage(db->second);
+  auto storage = OpenStorage(db->second);
   if (!storage) {
     err << "reenact-server: " << storage.error().message << std::endl;
     return 1;
@@ -152,8 +154,8 @@ int Serve(const Args& args, std::ostream& out, std::ostream& err) {
 int UserAdd(const Args& args, std::ostream& out, std::ostream& err) {
   if (args.positional.size() != 1) return Usage(err, "user add needs exactly one NAME");
   auto db = args.flags.find("--db");
-  if (db == args.flags.end()) return Usage(err, "user add needs --db FILE");
-  auto storage = OpenSqliteStorage(db->second);
+  if (db == args.flags.end()) return Usage(err, "user add needs --db FILE|URL");
+  auto storage = OpenStorage(db->second);
   if (!storage) {
     err << "reenact-server: " << storage.error().message << std::endl;
     return 1;
@@ -169,12 +171,12 @@ int UserAdd(const Args& args, std::ostream& out, std::ostream& err) {
   return 0;
 }
 
-// token add|revoke NAME --db FILE
+// token add|revoke NAME --db FILE|URL
 int Token(const std::string& action, const Args& args, std::ostream& out, std::ostream& err) {
   if (args.positional.size() != 1) return Usage(err, "token " + action + " needs exactly one NAME");
   auto db = args.flags.find("--db");
-  if (db == args.flags.end()) return Usage(err, "token " + action + " needs --db FILE");
-  auto storage = OpenSqliteStorage(db->second);
+  if (db == args.flags.end()) return Usage(err, "token " + action + " needs --db FILE|URL");
+  auto storage = OpenStorage(db->second);
   if (!storage) {
     err << "reenact-server: " << storage.error().message << std::endl;
     return 1;

@@ -1,5 +1,6 @@
 // GET /v1/clips/{id}/parts, GET /v1/me/clips?manifest_sha256=, and how PUT and publish treat
-// a part whose stored copy was damaged: the routes a resumable upload relies on.
+// a part whose stored copy was damaged: the routes a resumable upload relies on. On both
+// storage engines (SQLite; PostgreSQL where the tests' cluster can be started).
 #include <gtest/gtest.h>
 
 #include "proto/api/api_types.h"
@@ -10,10 +11,12 @@ namespace {
 
 using nlohmann::json;
 using testing::MakeTestClip;
-using testing::ServiceFixture;
 using testing::TestClip;
 
-using PartsRouteTest = ServiceFixture;
+class PartsRouteTest : public testing::EngineServiceFixture {};
+INSTANTIATE_TEST_SUITE_P(Engines, PartsRouteTest,
+                         ::testing::Values(testing::Engine::kSqlite, testing::Engine::kPostgres),
+                         testing::EngineName);
 
 proto::ClipParts Parts(const Response& r) {
   EXPECT_EQ(r.status, 200) << r.body;
@@ -22,7 +25,7 @@ proto::ClipParts Parts(const Response& r) {
   return parsed.ok() ? *parsed : proto::ClipParts{};
 }
 
-TEST_F(PartsRouteTest, ListsEveryPartWithWhatTheServerHolds) {
+TEST_P(PartsRouteTest, ListsEveryPartWithWhatTheServerHolds) {
   const TestClip clip = MakeTestClip(1, 2, 3);
   const std::string id = Create(clip, alice_);
   proto::ClipParts parts = Parts(Call("GET", "/v1/clips/" + id + "/parts", alice_));
@@ -56,7 +59,7 @@ TEST_F(PartsRouteTest, ListsEveryPartWithWhatTheServerHolds) {
   EXPECT_FALSE(parts.parts[2].Complete());
 }
 
-TEST_F(PartsRouteTest, DamagedStoredPartIsReportedRefusedAtPublishAndRepairedByPut) {
+TEST_P(PartsRouteTest, DamagedStoredPartIsReportedRefusedAtPublishAndRepairedByPut) {
   const TestClip clip = MakeTestClip(1, 2, 2);
   const std::string id = Create(clip, alice_);
   for (int n = 0; n < 2; ++n) {
@@ -99,7 +102,7 @@ TEST_F(PartsRouteTest, DamagedStoredPartIsReportedRefusedAtPublishAndRepairedByP
   EXPECT_TRUE(Parts(Call("GET", "/v1/clips/" + id + "/parts", alice_)).published);
 }
 
-TEST_F(PartsRouteTest, PartsLargerThanOneReadAreHashedWhole) {
+TEST_P(PartsRouteTest, PartsLargerThanOneReadAreHashedWhole) {
   TestClip clip;
   clip.frames = {std::string(size_t{5} << 19, 'a') + "tail", "short frame"};  // 2.5 MiB + 4
   clip.frames[0][size_t{1} << 20] = 'b';  // a byte at the start of the second 1 MiB piece
@@ -161,7 +164,7 @@ class ReplacingBlobStore : public BlobStore {
   int replaced_;
 };
 
-TEST_F(PartsRouteTest, PartReplacedWhileHashedIsHashedOnceMore) {
+TEST_P(PartsRouteTest, PartReplacedWhileHashedIsHashedOnceMore) {
   const TestClip clip = MakeTestClip(1, 2, 1);
   const std::string id = Publish(clip, alice_);
   Request request;
@@ -181,7 +184,7 @@ TEST_F(PartsRouteTest, PartReplacedWhileHashedIsHashedOnceMore) {
   EXPECT_EQ(Handle(request, failed).status, 500);
 }
 
-TEST_F(PartsRouteTest, PartsAreTheOwnersOnly) {
+TEST_P(PartsRouteTest, PartsAreTheOwnersOnly) {
   const TestClip clip = MakeTestClip(1, 2, 1);
   const std::string draft = Create(clip, alice_);
   EXPECT_EQ(Call("GET", "/v1/clips/" + draft + "/parts").status, 401);
@@ -193,7 +196,7 @@ TEST_F(PartsRouteTest, PartsAreTheOwnersOnly) {
   EXPECT_EQ(Call("GET", "/v1/clips/" + published + "/parts", bob_).status, 403);
 }
 
-TEST_F(PartsRouteTest, MyClipsFindsTheDraftOfAManifest) {
+TEST_P(PartsRouteTest, MyClipsFindsTheDraftOfAManifest) {
   const TestClip a = MakeTestClip(1, 2, 1, "a");
   const TestClip b = MakeTestClip(1, 2, 1, "b");
   const std::string id_a = Create(a, alice_);
@@ -217,7 +220,7 @@ TEST_F(PartsRouteTest, MyClipsFindsTheDraftOfAManifest) {
   EXPECT_EQ(json::parse(Call("GET", "/v1/me/clips", alice_).body)["clips"].size(), 2u);
 }
 
-TEST_F(PartsRouteTest, MyClipsRejectsMalformedFilters) {
+TEST_P(PartsRouteTest, MyClipsRejectsMalformedFilters) {
   Response r = Call("GET", "/v1/me/clips?manifest_sha256=ABC", alice_);
   EXPECT_EQ(r.status, 400);
   EXPECT_EQ(ErrorCode(r), "bad_request");

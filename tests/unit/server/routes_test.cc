@@ -1,4 +1,5 @@
-// Route handlers without sockets, on real SQLite storage in a temp dir.
+// Route handlers without sockets, on real storage of both engines: SQLite in a temp dir, and
+// PostgreSQL in the tests' throwaway cluster (skipped with a message where none is installed).
 #include "server/http/routes.h"
 
 #include <gtest/gtest.h>
@@ -10,16 +11,18 @@ namespace {
 
 using nlohmann::json;
 using testing::MakeTestClip;
-using testing::ServiceFixture;
 using testing::TestClip;
 
-using RoutesTest = ServiceFixture;
+class RoutesTest : public testing::EngineServiceFixture {};
+INSTANTIATE_TEST_SUITE_P(Engines, RoutesTest,
+                         ::testing::Values(testing::Engine::kSqlite, testing::Engine::kPostgres),
+                         testing::EngineName);
 
 std::optional<std::string> HeaderOf(const Response& r, const std::string& name) {
   return proto::FindHeader(r.headers, name);
 }
 
-TEST_F(RoutesTest, CreateWithoutTokenIs401) {
+TEST_P(RoutesTest, CreateWithoutTokenIs401) {
   const TestClip clip = MakeTestClip(1, 2);
   Response r = Call("POST", "/v1/clips", "", clip.manifest_json, "application/json");
   EXPECT_EQ(r.status, 401);
@@ -27,7 +30,7 @@ TEST_F(RoutesTest, CreateWithoutTokenIs401) {
   EXPECT_TRUE(HeaderOf(r, "WWW-Authenticate").has_value());
 }
 
-TEST_F(RoutesTest, CreateWithUnknownTokenIs401) {
+TEST_P(RoutesTest, CreateWithUnknownTokenIs401) {
   const TestClip clip = MakeTestClip(1, 2);
   Response r =
       Call("POST", "/v1/clips", "rnk_not-a-real-token", clip.manifest_json, "application/json");
@@ -40,19 +43,19 @@ TEST_F(RoutesTest, CreateWithUnknownTokenIs401) {
   EXPECT_EQ(Handle(basic, *context_).status, 401);
 }
 
-TEST_F(RoutesTest, CreateRejectsWrongContentType) {
+TEST_P(RoutesTest, CreateRejectsWrongContentType) {
   Response r = Call("POST", "/v1/clips", alice_, MakeTestClip(1, 2).manifest_json, "text/plain");
   EXPECT_EQ(r.status, 415);
   EXPECT_EQ(ErrorCode(r), "unsupported_media_type");
 }
 
-TEST_F(RoutesTest, CreateRejectsMalformedJson) {
+TEST_P(RoutesTest, CreateRejectsMalformedJson) {
   Response r = Call("POST", "/v1/clips", alice_, "{\"title\": ", "application/json");
   EXPECT_EQ(r.status, 400);
   EXPECT_EQ(ErrorCode(r), "bad_request");
 }
 
-TEST_F(RoutesTest, CreateRejectsInvalidManifestWith422) {
+TEST_P(RoutesTest, CreateRejectsInvalidManifestWith422) {
   json manifest = json::parse(MakeTestClip(1, 2).manifest_json);
   manifest["location"]["lat_deg"] = 95.0;
   Response r = Call("POST", "/v1/clips", alice_, manifest.dump(), "application/json");
@@ -61,7 +64,7 @@ TEST_F(RoutesTest, CreateRejectsInvalidManifestWith422) {
   EXPECT_NE(ErrorMessage(r).find("lat_deg"), std::string::npos);
 }
 
-TEST_F(RoutesTest, CreateRejectsAManifestWithARepeatedKeyWith422) {
+TEST_P(RoutesTest, CreateRejectsAManifestWithARepeatedKeyWith422) {
   const std::string manifest = MakeTestClip(1, 2).manifest_json;
   ASSERT_EQ(manifest.find('{'), 0u);
   // A second "title" first in the object; the parser would otherwise keep the last one.
@@ -74,14 +77,14 @@ TEST_F(RoutesTest, CreateRejectsAManifestWithARepeatedKeyWith422) {
   EXPECT_EQ(Call("POST", "/v1/clips", alice_, manifest, "application/json").status, 201);
 }
 
-TEST_F(RoutesTest, CreateRejectsOversizedManifestWith413) {
+TEST_P(RoutesTest, CreateRejectsOversizedManifestWith413) {
   context_->limits.max_manifest_bytes = 100;
   Response r =
       Call("POST", "/v1/clips", alice_, MakeTestClip(1, 2).manifest_json, "application/json");
   EXPECT_EQ(r.status, 413);
 }
 
-TEST_F(RoutesTest, CreateRejectsFrameDeclaredBeyondLimit) {
+TEST_P(RoutesTest, CreateRejectsFrameDeclaredBeyondLimit) {
   context_->limits.max_frame_bytes = 5;
   Response r =
       Call("POST", "/v1/clips", alice_, MakeTestClip(1, 2).manifest_json, "application/json");
@@ -89,7 +92,7 @@ TEST_F(RoutesTest, CreateRejectsFrameDeclaredBeyondLimit) {
   EXPECT_NE(ErrorMessage(r).find("frame 0"), std::string::npos);
 }
 
-TEST_F(RoutesTest, PutChecksSizeAndHashAgainstManifest) {
+TEST_P(RoutesTest, PutChecksSizeAndHashAgainstManifest) {
   const TestClip clip = MakeTestClip(1, 2);
   const std::string id = Create(clip, alice_);
   const std::string target = "/v1/clips/" + id + "/frames/0";
@@ -104,7 +107,7 @@ TEST_F(RoutesTest, PutChecksSizeAndHashAgainstManifest) {
   EXPECT_EQ(Call("PUT", target, alice_, clip.frames[0], "text/plain").status, 415);
 }
 
-TEST_F(RoutesTest, PutRejectsBadFrameNumbers) {
+TEST_P(RoutesTest, PutRejectsBadFrameNumbers) {
   const TestClip clip = MakeTestClip(1, 2, 3);
   const std::string id = Create(clip, alice_);
   EXPECT_EQ(Call("PUT", "/v1/clips/" + id + "/frames/3", alice_, clip.frames[0],
@@ -121,7 +124,7 @@ TEST_F(RoutesTest, PutRejectsBadFrameNumbers) {
             400);
 }
 
-TEST_F(RoutesTest, PutIsIdempotent) {
+TEST_P(RoutesTest, PutIsIdempotent) {
   const TestClip clip = MakeTestClip(1, 2);
   const std::string id = Create(clip, alice_);
   const std::string target = "/v1/clips/" + id + "/frames/1";
@@ -132,7 +135,7 @@ TEST_F(RoutesTest, PutIsIdempotent) {
   EXPECT_EQ(got.body, clip.frames[1]);
 }
 
-TEST_F(RoutesTest, OtherUsersCannotWriteOrSeeADraft) {
+TEST_P(RoutesTest, OtherUsersCannotWriteOrSeeADraft) {
   const TestClip clip = MakeTestClip(1, 2);
   const std::string id = Create(clip, alice_);
   EXPECT_EQ(
@@ -143,7 +146,7 @@ TEST_F(RoutesTest, OtherUsersCannotWriteOrSeeADraft) {
   EXPECT_EQ(Call("GET", "/v1/clips/" + id, alice_).status, 200);
 }
 
-TEST_F(RoutesTest, PublishNamesMissingPartsThenSucceeds) {
+TEST_P(RoutesTest, PublishNamesMissingPartsThenSucceeds) {
   const TestClip clip = MakeTestClip(1, 2, 3);
   const std::string id = Create(clip, alice_);
   ASSERT_EQ(Call("PUT", "/v1/clips/" + id + "/frames/0", alice_, clip.frames[0],
@@ -176,7 +179,7 @@ TEST_F(RoutesTest, PublishNamesMissingPartsThenSucceeds) {
   ASSERT_EQ(json::parse(list.body)["clips"].size(), 1u);
 }
 
-TEST_F(RoutesTest, ManifestIsReturnedExactlyWithEtagAnd304) {
+TEST_P(RoutesTest, ManifestIsReturnedExactlyWithEtagAnd304) {
   const TestClip clip = MakeTestClip(1, 2);
   const std::string id = Publish(clip, alice_);
   Response r = Call("GET", "/v1/clips/" + id);
@@ -193,7 +196,7 @@ TEST_F(RoutesTest, ManifestIsReturnedExactlyWithEtagAnd304) {
   EXPECT_TRUE(not_modified.body.empty());
 }
 
-TEST_F(RoutesTest, PartsCarryManifestHashAsEtag) {
+TEST_P(RoutesTest, PartsCarryManifestHashAsEtag) {
   const TestClip clip = MakeTestClip(1, 2);
   const std::string id = Publish(clip, alice_);
   Response map = Call("GET", "/v1/clips/" + id + "/map");
@@ -208,7 +211,7 @@ TEST_F(RoutesTest, PartsCarryManifestHashAsEtag) {
   EXPECT_EQ(Handle(conditional, *context_).status, 304);
 }
 
-TEST_F(RoutesTest, OnlyOwnerDeletesAndDeleteRemovesEveryPart) {
+TEST_P(RoutesTest, OnlyOwnerDeletesAndDeleteRemovesEveryPart) {
   const TestClip clip = MakeTestClip(1, 2);
   const std::string id = Publish(clip, alice_);
   EXPECT_EQ(Call("DELETE", "/v1/clips/" + id, bob_).status, 403);
@@ -232,7 +235,7 @@ TEST_F(RoutesTest, OnlyOwnerDeletesAndDeleteRemovesEveryPart) {
 // Distances below are arc lengths R * angle with R = 6371008.8 m along the equator or a
 // meridian through the pole, computed by hand: 0.05 deg -> 5559.754 m, 0.15 deg ->
 // 16679.262 m, 0.1 deg -> 11119.508 m, 0.45 deg -> 50037.786 m.
-TEST_F(RoutesTest, QuickPathAnswersSmallNearbySearchesAsHandleDoesAndDefersTheRest) {
+TEST_P(RoutesTest, QuickPathAnswersSmallNearbySearchesAsHandleDoesAndDefersTheRest) {
   for (const char* title : {"c0", "c1", "c2", "c3"}) {
     Publish(MakeTestClip(48.0 + 0.001 * (title[1] - '0'), 11.0, 1, title), alice_);
   }
@@ -262,7 +265,7 @@ TEST_F(RoutesTest, QuickPathAnswersSmallNearbySearchesAsHandleDoesAndDefersTheRe
   EXPECT_FALSE(HandleQuick(create, *context_).has_value());
 }
 
-TEST_F(RoutesTest, NearbyAcrossTheAntimeridian) {
+TEST_P(RoutesTest, NearbyAcrossTheAntimeridian) {
   const std::string east = Publish(MakeTestClip(0, 179.9, 1, "east"), alice_);
   const std::string west = Publish(MakeTestClip(0, -179.9, 1, "west"), alice_);
   Publish(MakeTestClip(0, 179.0, 1, "far"), alice_);
@@ -277,7 +280,7 @@ TEST_F(RoutesTest, NearbyAcrossTheAntimeridian) {
   EXPECT_EQ(clips[1]["location"]["lon_deg"].get<double>(), -179.9);
 }
 
-TEST_F(RoutesTest, NearbyAroundThePole) {
+TEST_P(RoutesTest, NearbyAroundThePole) {
   const std::string across = Publish(MakeTestClip(89.95, 180, 1, "across"), alice_);
   const std::string pole = Publish(MakeTestClip(90, 0, 1, "pole"), alice_);
   Publish(MakeTestClip(89.5, 0, 1, "far"), alice_);
@@ -296,7 +299,7 @@ TEST_F(RoutesTest, NearbyAroundThePole) {
             2u);
 }
 
-TEST_F(RoutesTest, NearbyWithRadiusZeroFindsOnlyTheExactPoint) {
+TEST_P(RoutesTest, NearbyWithRadiusZeroFindsOnlyTheExactPoint) {
   const std::string here = Publish(MakeTestClip(-33.8568, 151.2153, 1, "here"), alice_);
   Publish(MakeTestClip(-33.8568, 151.2154, 1, "next door"), alice_);
   const json clips =
@@ -306,7 +309,7 @@ TEST_F(RoutesTest, NearbyWithRadiusZeroFindsOnlyTheExactPoint) {
   EXPECT_EQ(clips[0]["distance_m"].get<double>(), 0.0);
 }
 
-TEST_F(RoutesTest, NearbyPagesInDistanceOrder) {
+TEST_P(RoutesTest, NearbyPagesInDistanceOrder) {
   std::vector<std::string> ids;
   for (int k = 0; k < 5; ++k) {
     std::string title = "c";
@@ -327,7 +330,7 @@ TEST_F(RoutesTest, NearbyPagesInDistanceOrder) {
   EXPECT_EQ(seen, ids);
 }
 
-TEST_F(RoutesTest, NearbyRejectsBadQueries) {
+TEST_P(RoutesTest, NearbyRejectsBadQueries) {
   EXPECT_EQ(Call("GET", "/v1/clips").status, 400);
   EXPECT_EQ(Call("GET", "/v1/clips?near=91,0").status, 400);
   EXPECT_EQ(Call("GET", "/v1/clips?near=abc").status, 400);
@@ -339,14 +342,14 @@ TEST_F(RoutesTest, NearbyRejectsBadQueries) {
   EXPECT_EQ(Call("GET", "/v1/clips?near=0,0&radius_m=2000000").status, 200);
 }
 
-TEST_F(RoutesTest, UnknownRouteAndWrongMethod) {
+TEST_P(RoutesTest, UnknownRouteAndWrongMethod) {
   EXPECT_EQ(Call("GET", "/v2/things").status, 404);
   Response r = Call("PATCH", "/v1/clips");
   EXPECT_EQ(r.status, 405);
   EXPECT_EQ(HeaderOf(r, "Allow"), "GET, POST");
 }
 
-TEST_F(RoutesTest, MyClipsListsDraftsOfTheCallerOnly) {
+TEST_P(RoutesTest, MyClipsListsDraftsOfTheCallerOnly) {
   Create(MakeTestClip(1, 2, 1, "draft"), alice_);
   Publish(MakeTestClip(1, 2, 1, "published"), bob_);
   Response r = Call("GET", "/v1/me/clips", alice_);
@@ -358,7 +361,7 @@ TEST_F(RoutesTest, MyClipsListsDraftsOfTheCallerOnly) {
   EXPECT_EQ(Call("GET", "/v1/me/clips").status, 401);
 }
 
-TEST_F(RoutesTest, HealthAndMetrics) {
+TEST_P(RoutesTest, HealthAndMetrics) {
   EXPECT_EQ(Call("GET", "/healthz").status, 200);
   Publish(MakeTestClip(1, 2, 1), alice_);
   Create(MakeTestClip(1, 2, 1, "d"), alice_);

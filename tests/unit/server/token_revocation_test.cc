@@ -1,4 +1,5 @@
-// Token revocation through the store and the DELETE /v1/me/token route, without sockets.
+// Token revocation through the store and the DELETE /v1/me/token route, without sockets, on both
+// storage engines.
 #include <gtest/gtest.h>
 
 #include "tests/unit/server/server_test_util.h"
@@ -7,9 +8,12 @@ namespace reenact::server {
 namespace {
 
 using testing::MakeTestClip;
-using TokenRevocationTest = testing::ServiceFixture;
+class TokenRevocationTest : public testing::EngineServiceFixture {};
+INSTANTIATE_TEST_SUITE_P(Engines, TokenRevocationTest,
+                         ::testing::Values(testing::Engine::kSqlite, testing::Engine::kPostgres),
+                         testing::EngineName);
 
-TEST_F(TokenRevocationTest, RevokedTokenNoLongerWritesAndOthersStillDo) {
+TEST_P(TokenRevocationTest, RevokedTokenNoLongerWritesAndOthersStillDo) {
   const std::string id = Create(MakeTestClip(1, 2), alice_);
   auto second = AddTokenForUser(*storage_.metadata, "alice");
   ASSERT_TRUE(second.ok()) << second.error().message;
@@ -31,7 +35,7 @@ TEST_F(TokenRevocationTest, RevokedTokenNoLongerWritesAndOthersStillDo) {
   EXPECT_EQ(Call("POST", "/v1/clips/" + id + "/publish", *second).status, 409);
 }
 
-TEST_F(TokenRevocationTest, RevokeAllTokensOfAUser) {
+TEST_P(TokenRevocationTest, RevokeAllTokensOfAUser) {
   auto second = AddTokenForUser(*storage_.metadata, "bob");
   ASSERT_TRUE(second.ok());
   auto revoked = storage_.metadata->RevokeUserTokens("bob");
@@ -42,7 +46,7 @@ TEST_F(TokenRevocationTest, RevokeAllTokensOfAUser) {
   EXPECT_EQ(Call("GET", "/v1/me/clips", alice_).status, 200);
 }
 
-TEST_F(TokenRevocationTest, UnknownUserIsAClearError) {
+TEST_P(TokenRevocationTest, UnknownUserIsAClearError) {
   auto revoked = storage_.metadata->RevokeUserTokens("nobody");
   ASSERT_FALSE(revoked.ok());
   EXPECT_EQ(revoked.error().code, "not_found");
@@ -51,7 +55,7 @@ TEST_F(TokenRevocationTest, UnknownUserIsAClearError) {
   EXPECT_EQ(added.error().code, "not_found");
 }
 
-TEST_F(TokenRevocationTest, RevokeRouteNeedsAToken) {
+TEST_P(TokenRevocationTest, RevokeRouteNeedsAToken) {
   Response r = Call("DELETE", "/v1/me/token");
   EXPECT_EQ(r.status, 401);
   EXPECT_EQ(ErrorCode(r), "unauthorized");
