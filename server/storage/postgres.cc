@@ -2,6 +2,7 @@
 
 #include <libpq-fe.h>
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -57,6 +58,37 @@ Expected<std::string> DescribeTarget(const std::string& url) {
   target += " on " + host;
   if (!port.empty()) target += ":" + port;
   return target;
+}
+
+Expected<std::string> AsUrl(const std::string& conninfo) {
+  char* parse_error = nullptr;
+  PQconninfoOption* options = PQconninfoParse(conninfo.c_str(), &parse_error);
+  if (!options) {
+    std::string detail = parse_error ? OneLine(parse_error) : "out of memory";
+    PQfreemem(parse_error);
+    return MakeError("invalid_argument", "invalid PostgreSQL URL: " + detail);
+  }
+  constexpr char kHex[] = "0123456789ABCDEF";
+  std::string url = "postgresql:///";
+  char separator = '?';
+  for (PQconninfoOption* o = options; o->keyword; ++o) {
+    if (!o->val) continue;
+    url += separator;
+    separator = '&';
+    url += o->keyword;
+    url += '=';
+    for (unsigned char c : std::string_view(o->val)) {
+      if (std::isalnum(c) || c == '-' || c == '.' || c == '_' || c == '~' || c == '/') {
+        url += static_cast<char>(c);
+      } else {
+        url += '%';
+        url += kHex[c >> 4];
+        url += kHex[c & 15];
+      }
+    }
+  }
+  PQconninfoFree(options);
+  return url;
 }
 
 Expected<std::string> WithDatabase(const std::string& url, const std::string& dbname) {

@@ -31,6 +31,11 @@ Expected<std::string> DescribeTarget(const std::string& url);
 // tools and tests that create databases). Code "invalid_argument" for a malformed URL.
 Expected<std::string> WithDatabase(const std::string& url, const std::string& dbname);
 
+// The connection string `conninfo` (key=value pairs or a URL) as an equivalent
+// postgresql:// URL, every setting a percent-encoded query parameter (for places that take
+// URLs only, such as reenact-server --db). Code "invalid_argument" for a malformed string.
+Expected<std::string> AsUrl(const std::string& conninfo);
+
 // One statement parameter: text, binary bytes, or NULL.
 struct Param {
   Param(std::string_view text) : value(text) {}  // NOLINT: implicit by design

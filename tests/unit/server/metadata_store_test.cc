@@ -377,5 +377,25 @@ TEST(PostgresConnection, UnreachableServerAndMalformedUrlAreClearErrors) {
   EXPECT_NE(malformed.error().message.find("no_such_option"), std::string::npos);
 }
 
+TEST(PostgresConnection, AsUrlKeepsEverySettingAndEncodesThem) {
+  const std::string conninfo =
+      "host='/tmp/a dir' port=5433 user=someone dbname='d b' password='p&q=r%'";
+  auto url = pg::AsUrl(conninfo);
+  ASSERT_TRUE(url.ok()) << url.error().message;
+  EXPECT_EQ(url->rfind("postgresql:///?", 0), 0u) << *url;
+  EXPECT_NE(url->find("host=/tmp/a%20dir"), std::string::npos) << *url;
+  EXPECT_NE(url->find("password=p%26q%3Dr%25"), std::string::npos) << *url;
+  EXPECT_EQ(*pg::DescribeTarget(*url), *pg::DescribeTarget(conninfo));
+  EXPECT_EQ(*pg::AsUrl(*url), *url);  // a URL comes back as it went in
+  EXPECT_EQ(pg::AsUrl("host=x no_such_option=1").error().code, "invalid_argument");
+
+  REENACT_POSTGRES_DATABASE_OR_SKIP(database);
+  auto reached = pg::AsUrl(*database);
+  ASSERT_TRUE(reached.ok());
+  auto db = pg::Connection::Open(*reached);
+  ASSERT_TRUE(db.ok()) << db.error().message;
+  EXPECT_EQ(db->target(), *pg::DescribeTarget(*database));  // the same database, user and host
+}
+
 }  // namespace
 }  // namespace reenact::server
