@@ -61,7 +61,8 @@ TEST(ServerCli, UnreachablePostgresIsOneLineAtStartWithoutThePassword) {
 }
 
 TEST(ServerCli, MalformedPostgresUrlIsOneLineNamingTheProblem) {
-  const CliRun run = RunCli({"user", "add", "alice", "--db", "postgresql://a@b/c?no_such_option=1"});
+  const CliRun run =
+      RunCli({"user", "add", "alice", "--db", "postgresql://a@b/c?no_such_option=1"});
   ExpectOneLineFailure(run);
   EXPECT_NE(run.err.find("no_such_option"), std::string::npos) << run.err;
 }

@@ -1,4 +1,5 @@
-// The real server on 127.0.0.1 with a free port, driven end to end by proto's ApiClient.
+// The real server on 127.0.0.1 with a free port, driven end to end by proto's ApiClient, on both
+// storage engines (PostgreSQL where the tests' cluster can be started).
 #include "server/http/http_server.h"
 
 #include <thread>
@@ -14,10 +15,11 @@ namespace {
 using testing::MakeTestClip;
 using testing::TestClip;
 
-class ServerSocketTest : public testing::ServiceFixture {
+class ServerSocketTest : public testing::EngineServiceFixture {
  protected:
   void SetUp() override {
-    ServiceFixture::SetUp();
+    EngineServiceFixture::SetUp();
+    if (IsSkipped() || HasFatalFailure()) return;
     ServerOptions options;
     options.host = "127.0.0.1";
     options.port = 0;
@@ -42,7 +44,11 @@ class ServerSocketTest : public testing::ServiceFixture {
   std::thread thread_;
 };
 
-TEST_F(ServerSocketTest, UploadPublishBrowseDownloadDelete) {
+INSTANTIATE_TEST_SUITE_P(Engines, ServerSocketTest,
+                         ::testing::Values(testing::Engine::kSqlite, testing::Engine::kPostgres),
+                         testing::EngineName);
+
+TEST_P(ServerSocketTest, UploadPublishBrowseDownloadDelete) {
   const TestClip clip = MakeTestClip(35.0, 139.0, 3, "tokyo");
   proto::ApiClient alice(url_, alice_);
   auto id = alice.CreateClip(clip.manifest_json);
@@ -90,7 +96,7 @@ TEST_F(ServerSocketTest, UploadPublishBrowseDownloadDelete) {
   EXPECT_EQ(gone.error().code, "not_found");
 }
 
-TEST_F(ServerSocketTest, ServerErrorsReachTheClient) {
+TEST_P(ServerSocketTest, ServerErrorsReachTheClient) {
   proto::ApiClient bad_token(url_, "rnk_wrong");
   auto created = bad_token.CreateClip(MakeTestClip(0, 0).manifest_json);
   ASSERT_FALSE(created.ok());
@@ -98,7 +104,7 @@ TEST_F(ServerSocketTest, ServerErrorsReachTheClient) {
   EXPECT_NE(created.error().message.find("unknown token"), std::string::npos);
 }
 
-TEST_F(ServerSocketTest, OversizedBodyGets413) {
+TEST_P(ServerSocketTest, OversizedBodyGets413) {
   const TestClip clip = MakeTestClip(0, 0, 1);
   proto::ApiClient alice(url_, alice_);
   auto id = alice.CreateClip(clip.manifest_json);
@@ -109,7 +115,7 @@ TEST_F(ServerSocketTest, OversizedBodyGets413) {
   EXPECT_EQ(put.error().code, "too_large") << put.error().message;
 }
 
-TEST_F(ServerSocketTest, MetricsCountRequestsByRoute) {
+TEST_P(ServerSocketTest, MetricsCountRequestsByRoute) {
   proto::HttpClient http(url_);
   ASSERT_EQ(http.Send({"GET", "/healthz", {}, "", ""})->status, 200);
   auto metrics = http.Send({"GET", "/metrics", {}, "", ""});
@@ -120,7 +126,7 @@ TEST_F(ServerSocketTest, MetricsCountRequestsByRoute) {
   EXPECT_NE(metrics->body.find("reenact_http_request_duration_seconds_bucket"), std::string::npos);
 }
 
-TEST_F(ServerSocketTest, TakenPortIsAClearError) {
+TEST_P(ServerSocketTest, TakenPortIsAClearError) {
   ServerOptions options;
   options.port = port_;
   HttpServer second(*context_, options);
@@ -129,7 +135,7 @@ TEST_F(ServerSocketTest, TakenPortIsAClearError) {
   EXPECT_EQ(port.error().code, "address_in_use");
 }
 
-TEST_F(ServerSocketTest, StopReturnsFromRunWithIdleConnectionsOpen) {
+TEST_P(ServerSocketTest, StopReturnsFromRunWithIdleConnectionsOpen) {
   proto::HttpClient http(url_);
   ASSERT_TRUE(http.Send({"GET", "/healthz", {}, "", ""}).ok());
   server_->Stop();
