@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <charconv>
 #include <chrono>
+#include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <string>
@@ -11,6 +13,7 @@
 #include "server/app/open_file_limit.h"
 #include "server/auth/token.h"
 #include "server/http/http_server.h"
+#include "server/storage/copy_storage.h"
 #include "server/storage/open_storage.h"
 
 namespace reenact::server {
@@ -26,6 +29,7 @@ constexpr const char* kUsage =
     "       reenact-server user add NAME --db FILE|URL\n"
     "       reenact-server token add NAME --db FILE|URL\n"
     "       reenact-server token revoke NAME --db FILE|URL\n"
+    "       reenact-server migrate-db --from FILE|URL --to URL|FILE\n"
     "--db: a SQLite database file (created if absent), or a PostgreSQL URL\n"
     "      postgresql://USER:PASSWORD@HOST:PORT/DATABASE (PostGIS installed there)\n";
 
@@ -201,6 +205,44 @@ int Token(const std::string& action, const Args& args, std::ostream& out, std::o
   return 0;
 }
 
+// migrate-db --from FILE|URL --to URL|FILE
+int MigrateDb(const Args& args, std::ostream& out, std::ostream& err) {
+  if (!args.positional.empty()) return Usage(err, "unexpected argument " + args.positional[0]);
+  auto from = args.flags.find("--from");
+  auto to = args.flags.find("--to");
+  if (from == args.flags.end() || to == args.flags.end()) {
+    return Usage(err, "migrate-db needs --from FILE|URL and --to URL|FILE");
+  }
+  std::error_code ec;
+  if (!IsPostgresUrl(from->second) && !std::filesystem::is_regular_file(from->second, ec)) {
+    err << "reenact-server: no database file at '" << from->second
+        << "'; --from must name an existing reenact-server database" << std::endl;
+    return 2;
+  }
+  auto source = OpenStorage(from->second);
+  if (!source) {
+    err << "reenact-server: source: " << source.error().message << std::endl;
+    return 1;
+  }
+  auto target = OpenStorage(to->second);
+  if (!target) {
+    err << "reenact-server: target: " << target.error().message << std::endl;
+    return 1;
+  }
+  auto copied = CopyStorage(*source, *target);
+  if (!copied) {
+    err << "reenact-server: " << copied.error().message << std::endl;
+    return 1;
+  }
+  char seconds[32];
+  std::snprintf(seconds, sizeof(seconds), "%.2f", copied->seconds);
+  out << "copied " << copied->users << " users, " << copied->tokens << " tokens, "
+      << copied->clips << " clips (" << copied->published_clips << " published), "
+      << copied->parts << " parts, " << copied->blobs << " blobs, " << copied->blob_bytes
+      << " bytes in " << seconds << " s; verified by SHA-256" << std::endl;
+  return 0;
+}
+
 }  // namespace
 
 int RunServerCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
@@ -235,6 +277,12 @@ int RunServerCli(int argc, const char* const* argv, std::ostream& out, std::ostr
       return Usage(err, problem);
     }
     return Token(words[1], args, out, err);
+  }
+  if (words[0] == "migrate-db") {
+    if (!ParseArgs({words.begin() + 1, words.end()}, {"--from", "--to"}, args, problem)) {
+      return Usage(err, problem);
+    }
+    return MigrateDb(args, out, err);
   }
   return Usage(err, "unknown command '" + words[0] + "'");
 }

@@ -11,6 +11,13 @@
 //       Issues another token for an existing user and prints it once.
 //   reenact-server token revoke NAME --db FILE|URL
 //       Revokes every token of the user (effective at once, also for a running server).
+//   reenact-server migrate-db --from FILE|URL --to URL|FILE
+//       Copies a whole database into an empty one (typically a SQLite file into PostgreSQL),
+//       verifies it by SHA-256 (server/storage/copy_storage.h) and prints one summary line
+//       "copied U users, T tokens, C clips (P published), N parts, B blobs, X bytes in S s;
+//       verified by SHA-256". A missing --from file exits 2; a target holding data, a failed
+//       copy or a verification mismatch exits 1 with one line (after a partial copy: drop the
+//       target and run again). The source is only read.
 //   reenact-server --help
 // --db FILE is the embedded SQLite database (metadata and payloads in one file); --db URL with
 // postgresql:// or postgres:// keeps both in that PostgreSQL/PostGIS database. A wrong URL,

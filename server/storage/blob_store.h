@@ -10,6 +10,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "common/error/expected.h"
 
@@ -44,6 +45,8 @@ class BlobStore {
   virtual Expected<std::unique_ptr<BlobReader>> OpenReader(const std::string& key) = 0;
   // Removes every key starting with prefix.
   virtual Status DeletePrefix(const std::string& prefix) = 0;
+  // Every key, in bytewise order (to copy a whole store: reenact-server migrate-db).
+  virtual Expected<std::vector<std::string>> ListKeys() = 0;
 };
 
 }  // namespace reenact::server

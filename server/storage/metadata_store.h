@@ -111,6 +111,10 @@ class MetadataStore {
   virtual Expected<bool> RevokeToken(const std::string& token_sha256) = 0;
   // Revokes every token of a user; returns how many; code "not_found" for no such user.
   virtual Expected<int> RevokeUserTokens(const std::string& user_name) = 0;
+  // Every user, by id (to copy a whole store: reenact-server migrate-db).
+  virtual Expected<std::vector<UserRecord>> ListUsers() = 0;
+  // The token hashes of a user, oldest first; empty when it has none or there is no such user.
+  virtual Expected<std::vector<std::string>> TokenHashesOfUser(int64_t user_id) = 0;
 
   // Creates a draft; code "conflict" when the id exists.
   virtual Status CreateClip(const NewClip& clip) = 0;

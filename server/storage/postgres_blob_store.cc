@@ -118,4 +118,13 @@ Status PostgresBlobStore::DeletePrefix(const std::string& prefix) {
   return {};
 }
 
+Expected<std::vector<std::string>> PostgresBlobStore::ListKeys() {
+  auto db = pool_->Acquire();
+  auto rows = db->Query("SELECT key FROM blobs ORDER BY key", {});  // COLLATE "C": bytewise
+  if (!rows) return rows.error();
+  std::vector<std::string> keys;
+  for (int i = 0; i < rows->rows(); ++i) keys.push_back(rows->Text(i, 0));
+  return keys;
+}
+
 }  // namespace reenact::server

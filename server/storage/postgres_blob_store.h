@@ -33,6 +33,7 @@ class PostgresBlobStore : public BlobStore {
   Expected<std::optional<std::string>> Get(const std::string& key) override;
   Expected<std::unique_ptr<BlobReader>> OpenReader(const std::string& key) override;
   Status DeletePrefix(const std::string& prefix) override;
+  Expected<std::vector<std::string>> ListKeys() override;
 
  private:
   explicit PostgresBlobStore(std::shared_ptr<pg::ConnectionPool> pool) : pool_(std::move(pool)) {}

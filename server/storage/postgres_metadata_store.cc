@@ -142,6 +142,27 @@ Expected<int> PostgresMetadataStore::RevokeUserTokens(const std::string& user_na
   return revoked;
 }
 
+Expected<std::vector<UserRecord>> PostgresMetadataStore::ListUsers() {
+  std::lock_guard lock(mutex_);
+  auto rows = db_.Query("SELECT id, name FROM users ORDER BY id", {});
+  if (!rows) return rows.error();
+  std::vector<UserRecord> users;
+  for (int i = 0; i < rows->rows(); ++i) {
+    users.push_back(UserRecord{rows->Int(i, 0), rows->Text(i, 1)});
+  }
+  return users;
+}
+
+Expected<std::vector<std::string>> PostgresMetadataStore::TokenHashesOfUser(int64_t user_id) {
+  std::lock_guard lock(mutex_);
+  auto rows =
+      db_.Query("SELECT token_sha256 FROM tokens WHERE user_id = $1 ORDER BY id", {user_id});
+  if (!rows) return rows.error();
+  std::vector<std::string> hashes;
+  for (int i = 0; i < rows->rows(); ++i) hashes.push_back(rows->Text(i, 0));
+  return hashes;
+}
+
 Status PostgresMetadataStore::CreateClip(const NewClip& clip) {
   std::lock_guard lock(mutex_);
   auto tx = pg::Transaction::Begin(db_);

@@ -40,6 +40,8 @@ class PostgresMetadataStore : public MetadataStore {
                                 const std::string& token_sha256) override;
   Expected<bool> RevokeToken(const std::string& token_sha256) override;
   Expected<int> RevokeUserTokens(const std::string& user_name) override;
+  Expected<std::vector<UserRecord>> ListUsers() override;
+  Expected<std::vector<std::string>> TokenHashesOfUser(int64_t user_id) override;
   Status CreateClip(const NewClip& clip) override;
   Expected<std::optional<ClipRecord>> GetClip(const std::string& id) override;
   Expected<std::string> GetManifest(const std::string& id) override;

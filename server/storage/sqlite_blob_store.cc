@@ -56,4 +56,18 @@ Status SqliteBlobStore::DeletePrefix(const std::string& prefix) {
   return stmt->Run();
 }
 
+Expected<std::vector<std::string>> SqliteBlobStore::ListKeys() {
+  auto lease = readers_->Acquire();  // its end resets the statement: no read stays open
+  auto stmt = lease.Prepared("SELECT key FROM blobs ORDER BY key");
+  if (!stmt) return stmt.error();
+  std::vector<std::string> keys;
+  for (;;) {
+    auto row = (*stmt)->Step();
+    if (!row) return row.error();
+    if (!*row) break;
+    keys.push_back((*stmt)->ColumnText(0));
+  }
+  return keys;
+}
+
 }  // namespace reenact::server

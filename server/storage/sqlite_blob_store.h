@@ -27,6 +27,7 @@ class SqliteBlobStore : public BlobStore {
   Expected<std::optional<std::string>> Get(const std::string& key) override;
   Expected<std::unique_ptr<BlobReader>> OpenReader(const std::string& key) override;
   Status DeletePrefix(const std::string& prefix) override;
+  Expected<std::vector<std::string>> ListKeys() override;
 
  private:
   SqliteBlobStore(std::shared_ptr<sqlite::WalCheckpointer> checkpointer, sqlite::Database db,

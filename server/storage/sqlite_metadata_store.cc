@@ -158,6 +158,35 @@ Expected<int> SqliteMetadataStore::RevokeUserTokens(const std::string& user_name
   return revoked;
 }
 
+Expected<std::vector<UserRecord>> SqliteMetadataStore::ListUsers() {
+  std::lock_guard lock(mutex_);
+  auto stmt = db_.Prepare("SELECT id, name FROM users ORDER BY id");
+  if (!stmt) return stmt.error();
+  std::vector<UserRecord> users;
+  for (;;) {
+    auto row = stmt->Step();
+    if (!row) return row.error();
+    if (!*row) break;
+    users.push_back(UserRecord{stmt->ColumnInt(0), stmt->ColumnText(1)});
+  }
+  return users;
+}
+
+Expected<std::vector<std::string>> SqliteMetadataStore::TokenHashesOfUser(int64_t user_id) {
+  std::lock_guard lock(mutex_);
+  auto stmt = db_.Prepare("SELECT token_sha256 FROM tokens WHERE user_id = ?1 ORDER BY id");
+  if (!stmt) return stmt.error();
+  stmt->Bind(1, user_id);
+  std::vector<std::string> hashes;
+  for (;;) {
+    auto row = stmt->Step();
+    if (!row) return row.error();
+    if (!*row) break;
+    hashes.push_back(stmt->ColumnText(0));
+  }
+  return hashes;
+}
+
 Status SqliteMetadataStore::CreateClip(const NewClip& clip) {
   std::lock_guard lock(mutex_);
   auto tx = sqlite::Transaction::Begin(db_);

@@ -96,6 +96,22 @@ TEST_P(BlobReaderTest, PutReplaceGetAndDeleteByPrefix) {
   EXPECT_EQ(**blobs.Get("abc/map"), "other clip");
 }
 
+TEST_P(BlobReaderTest, ListKeysGivesEveryKeyInBytewiseOrder) {
+  BlobStore& blobs = *storage_.blobs;
+  EXPECT_TRUE(blobs.ListKeys()->empty());
+  // Bytewise: upper case before lower case, "1" before "9", UTF-8 (0xc3) after ASCII; a
+  // locale's collation would order these otherwise.
+  for (const char* key : {"a/map", "\xc3\xa9/map", "a/frames/9", "Z/map", "a/frames/10", "B/x"}) {
+    ASSERT_TRUE(blobs.Put(key, key).ok()) << key;
+  }
+  ASSERT_TRUE(blobs.Put("a/map", "replaced").ok());
+  ASSERT_TRUE(blobs.DeletePrefix("B/").ok());
+  auto keys = blobs.ListKeys();
+  ASSERT_TRUE(keys.ok()) << keys.error().message;
+  EXPECT_EQ(*keys, (std::vector<std::string>{"Z/map", "a/frames/10", "a/frames/9", "a/map",
+                                             "\xc3\xa9/map"}));
+}
+
 TEST_P(BlobReaderTest, DeletePrefixTakesEveryCharacterLiterally) {
   // "_" and "%" are wildcards of SQL LIKE and "\\" its escape; here they are only characters.
   BlobStore& blobs = *storage_.blobs;

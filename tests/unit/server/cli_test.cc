@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "proto/clip/content_hash.h"
 #include "server/auth/token.h"
 #include "server/storage/open_storage.h"
 #include "server/storage/postgres.h"
@@ -119,6 +120,97 @@ TEST(ServerCli, AFileKeepsSqlite) {
   auto owner = storage->metadata->FindUserByTokenHash(HashToken(token));
   ASSERT_TRUE(owner.ok() && owner->has_value());
   EXPECT_EQ((*owner)->user.name, "bob");
+}
+
+// A SQLite file at `path` with user alice and one published clip of one frame and a map;
+// returns the bytes of its payloads.
+int64_t MakeSourceFile(const std::string& path) {
+  auto storage = OpenSqliteStorage(path);
+  EXPECT_TRUE(storage.ok()) << storage.error().message;
+  if (!storage.ok()) return 0;
+  auto alice = storage->metadata->AddUser("alice", HashToken("rnk_alice"));
+  EXPECT_TRUE(alice.ok());
+  const testing::TestClip clip = testing::MakeTestClip(47.37, 8.54, 1, "zurich");
+  NewClip draft;
+  draft.record.id = "zurich";
+  draft.record.owner_id = alice.ok() ? alice->id : 0;
+  draft.record.frame_count = 1;
+  draft.record.manifest_sha256 = proto::Sha256Hex(clip.manifest_json);
+  draft.manifest_json = clip.manifest_json;
+  draft.parts = {{0, static_cast<int64_t>(clip.frames[0].size()), proto::Sha256Hex(clip.frames[0])},
+                 {kMapPart, static_cast<int64_t>(clip.map.size()), proto::Sha256Hex(clip.map)}};
+  EXPECT_TRUE(storage->metadata->CreateClip(draft).ok());
+  EXPECT_TRUE(storage->blobs->Put(BlobKey("zurich", 0), clip.frames[0]).ok());
+  EXPECT_TRUE(storage->blobs->Put(BlobKey("zurich", kMapPart), clip.map).ok());
+  EXPECT_TRUE(storage->metadata->MarkPartPresent("zurich", 0).ok());
+  EXPECT_TRUE(storage->metadata->MarkPartPresent("zurich", kMapPart).ok());
+  EXPECT_TRUE(storage->metadata->Publish("zurich")->published);
+  return static_cast<int64_t>(clip.frames[0].size() + clip.map.size());
+}
+
+TEST(ServerCli, MigrateDbCopiesAFileIntoPostgresPrintsTheSummaryAndRefusesASecondRun) {
+  auto database = testing::NewPostgresTestDatabase();
+  if (!database && database.error().code == "unavailable") {
+    GTEST_SKIP() << database.error().message;
+  }
+  ASSERT_TRUE(database.ok()) << database.error().message;
+  auto url = pg::AsUrl(*database);
+  ASSERT_TRUE(url.ok()) << url.error().message;
+  TempDir dir;
+  const std::string path = (dir.path() / "reenact.db").string();
+  const int64_t bytes = MakeSourceFile(path);
+
+  const CliRun copied = RunCli({"migrate-db", "--from", path, "--to", *url});
+  ASSERT_EQ(copied.code, 0) << copied.err;
+  std::string expected = "copied 1 users, 1 tokens, 1 clips (1 published), 2 parts, 2 blobs, ";
+  expected += std::to_string(bytes);
+  expected += " bytes in ";
+  EXPECT_EQ(copied.out.rfind(expected, 0), 0u) << copied.out;
+  EXPECT_NE(copied.out.find(" s; verified by SHA-256\n"), std::string::npos) << copied.out;
+  EXPECT_EQ(copied.out.find('\n'), copied.out.size() - 1);
+
+  auto storage = OpenPostgresStorage(*database);
+  ASSERT_TRUE(storage.ok()) << storage.error().message;
+  auto owner = storage->metadata->FindUserByTokenHash(HashToken("rnk_alice"));
+  ASSERT_TRUE(owner.ok() && owner->has_value());
+  EXPECT_EQ((*owner)->user.name, "alice");
+  EXPECT_EQ(*storage->metadata->CountClips(ClipState::kPublished), 1);
+
+  const CliRun again = RunCli({"migrate-db", "--from", path, "--to", *url});
+  ExpectOneLineFailure(again);
+  EXPECT_NE(again.err.find("empty database"), std::string::npos) << again.err;
+}
+
+TEST(ServerCli, MigrateDbIntoAnotherFileWorksWithoutPostgres) {
+  TempDir dir;
+  const std::string from = (dir.path() / "from.db").string();
+  const std::string to = (dir.path() / "to.db").string();
+  const int64_t bytes = MakeSourceFile(from);
+  const CliRun copied = RunCli({"migrate-db", "--from", from, "--to", to});
+  ASSERT_EQ(copied.code, 0) << copied.err;
+  EXPECT_NE(copied.out.find(", 2 blobs, " + std::to_string(bytes) + " bytes in "),
+            std::string::npos)
+      << copied.out;
+}
+
+TEST(ServerCli, MigrateDbFromAMissingFileIsOneLineAndCreatesNothing) {
+  TempDir dir;
+  const std::string missing = (dir.path() / "missing.db").string();
+  const std::string to = (dir.path() / "to.db").string();
+  const CliRun run = RunCli({"migrate-db", "--from", missing, "--to", to});
+  EXPECT_EQ(run.code, 2);
+  EXPECT_EQ(run.out, "");
+  EXPECT_EQ(run.err.find('\n'), run.err.size() - 1) << run.err;
+  EXPECT_NE(run.err.find("no database file at '" + missing + "'"), std::string::npos) << run.err;
+  EXPECT_FALSE(std::filesystem::exists(missing));
+  EXPECT_FALSE(std::filesystem::exists(to));
+}
+
+TEST(ServerCli, MigrateDbNeedsBothEnds) {
+  const CliRun run = RunCli({"migrate-db", "--from", "a.db"});
+  EXPECT_EQ(run.code, 2);
+  EXPECT_NE(run.err.find("migrate-db needs --from FILE|URL and --to URL|FILE"), std::string::npos)
+      << run.err;
 }
 
 }  // namespace

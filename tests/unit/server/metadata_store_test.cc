@@ -131,6 +131,28 @@ TEST_P(MetadataStoreTest, UsersAndTokens) {
   EXPECT_EQ(store_->RevokeUserTokens("nobody").error().code, "not_found");
 }
 
+TEST_P(MetadataStoreTest, ListUsersAndTheirTokenHashes) {
+  ASSERT_TRUE(store_->AddUser("zed", Hash('5')).ok());
+  auto amy = store_->AddUser("amy", Hash('1'));
+  ASSERT_TRUE(amy.ok());
+  ASSERT_TRUE(store_->AddToken("amy", Hash('4')).ok());
+  ASSERT_TRUE(store_->AddToken("amy", Hash('2')).ok());
+  ASSERT_TRUE(store_->AddToken("owner", Hash('3')).ok());
+  ASSERT_TRUE(*store_->RevokeToken(Hash('4')));
+  auto users = store_->ListUsers();
+  ASSERT_TRUE(users.ok()) << users.error().message;
+  std::vector<std::string> names;
+  for (const UserRecord& u : *users) names.push_back(u.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"owner", "zed", "amy"}));  // by id: as added
+  EXPECT_EQ(users->back().id, amy->id);
+  // Oldest first, without the revoked one.
+  EXPECT_EQ(*store_->TokenHashesOfUser(amy->id), (std::vector<std::string>{Hash('1'), Hash('2')}));
+  EXPECT_EQ(*store_->TokenHashesOfUser(owner_), (std::vector<std::string>{Hash('0'), Hash('3')}));
+  ASSERT_EQ(*store_->RevokeUserTokens("zed"), 1);
+  EXPECT_TRUE(store_->TokenHashesOfUser((*users)[1].id)->empty());
+  EXPECT_TRUE(store_->TokenHashesOfUser(amy->id + 1000)->empty());
+}
+
 TEST_P(MetadataStoreTest, ClipRecordManifestAndPartsRoundTrip) {
   NewClip clip;
   clip.record.id = "clip-1";

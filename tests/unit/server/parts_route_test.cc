@@ -158,6 +158,7 @@ class ReplacingBlobStore : public BlobStore {
     return std::unique_ptr<BlobReader>(new ReplacedReader((*reader)->size()));
   }
   Status DeletePrefix(const std::string& prefix) override { return store_.DeletePrefix(prefix); }
+  Expected<std::vector<std::string>> ListKeys() override { return store_.ListKeys(); }
 
  private:
   BlobStore& store_;
