@@ -1,5 +1,5 @@
 // Checks of the shipped deployment files with the tools that read them, where installed:
-// systemd-analyze verify for the unit, nginx -t for the proxy config. A missing tool skips.
+// systemd-analyze verify for the unit, nginx -t for the proxy configs. A missing tool skips.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -49,18 +49,24 @@ TEST(ServerDeploy, SystemdUnitVerifies) {
   EXPECT_EQ(r.err.find("reenact-server.service:"), std::string::npos) << r.err;
 }
 
-TEST(ServerDeploy, NginxConfigParses) {
+// nginx -t on deploy/<file>, a conf.d snippet (http context) wrapped in a minimal main config.
+void ExpectNginxConfigParses(const std::string& file) {
   const std::string tool = Which("nginx");
   if (tool.empty()) GTEST_SKIP() << "nginx is not installed; proxy config not checked";
   testing::TempDir tmp;
-  // The shipped file is a conf.d snippet (http context); wrap it in a minimal main config.
   std::ofstream(tmp.path() + "/nginx.conf")
       << "pid " << tmp.path() << "/nginx.pid;\nerror_log " << tmp.path() << "/error.log;\n"
       << "events {}\nhttp {\n  access_log off;\n  include " << REENACT_SOURCE_DIR
-      << "/deploy/nginx-reenact.conf;\n}\n";
+      << "/deploy/" << file << ";\n}\n";
   const auto r = testing::RunProcess(
       {tool, "-t", "-p", tmp.path(), "-c", tmp.path() + "/nginx.conf"}, std::chrono::seconds(60));
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+}
+
+TEST(ServerDeploy, NginxConfigParses) { ExpectNginxConfigParses("nginx-reenact.conf"); }
+
+TEST(ServerDeploy, NginxUpstreamConfigParses) {
+  ExpectNginxConfigParses("nginx-reenact-upstream.conf");
 }
 
 TEST(ServerDeploy, ContainerfileRunsTheServerAsAnUnprivilegedUser) {
