@@ -3,7 +3,8 @@
 // holds up to `burst` requests' worth of credit, refilled at `per_second`. A request spends
 // one credit; with none left it is refused (the server answers 429 with Retry-After).
 // Thread-safe. Memory is bounded: beyond max_keys, buckets that are full again (idle keys)
-// are forgotten first, and if none is full the oldest-touched half is dropped.
+// are forgotten first, and if none is full the oldest-touched half is dropped. The buckets live
+// in this process: several servers behind one proxy each allow a token the full rate.
 
 #include <chrono>
 #include <cstddef>
@@ -14,9 +15,9 @@
 namespace reenact::server {
 
 struct RateLimitOptions {
-  // Sustained requests per second per key; >= 0, 0 = no limit. Default 50.
+  // Sustained requests per second per key; >= 0, 0 = no limit. Default 200.
   double per_second = 200.0;
-  // Requests a key may send at once after being idle; >= 1. Default 100.
+  // Requests a key may send at once after being idle; >= 1. Default 400.
   double burst = 400.0;
   // Keys remembered at most; >= 1. Default 100000.
   size_t max_keys = 100000;
