@@ -2,7 +2,8 @@
 // of tests/unit/server/postgres_test_cluster.h): a clip published through one is browsed and
 // downloaded whole through the other; an upload through one that is killed with SIGKILL part
 // way resumes through the other, and the clip is never visible before it is whole. Where
-// nginx is installed, the same through deploy/nginx-reenact-upstream.conf in front of both.
+// nginx is installed, the same through deploy/nginx-reenact-upstream.conf in front of both,
+// and reads that reach the dead server go on to the live one.
 // Skips where PostgreSQL cannot be started.
 #include <gtest/gtest.h>
 #include <sys/prctl.h>
@@ -401,6 +402,15 @@ TEST_F(MultiServer, BehindNginxAKilledServerIsRoutedAroundAndTheUploadCompletes)
   ExpectWholeOn(*url_b, draft, clip(2), kFrames[2]);
   const auto visible = VisibleNearby(url);
   EXPECT_EQ(visible.size(), 2u);
+
+  // A fresh nginx that has not seen A fail: reads sent to the dead A go on to B.
+  proxy.Stop();
+  testing::TempDir tmp2;
+  NginxProcess fresh;
+  const std::string url2 = fresh.Start(nginx, tmp2.path(), a.port(), b.port(), &error);
+  ASSERT_FALSE(url2.empty()) << error;
+  ExpectWholeOn(url2, draft, clip(2), kFrames[2]);
+  EXPECT_EQ(VisibleNearby(url2).size(), 2u);
 }
 
 }  // namespace
