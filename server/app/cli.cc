@@ -167,7 +167,7 @@ int UserAdd(const Args& args, std::ostream& out, std::ostream& err) {
   auto token = AddUserWithToken(*storage->metadata, args.positional[0]);
   if (!token) {
     err << "reenact-server: " << token.error().message << std::endl;
-    return token.error().code == "storage" ? 1 : 2;
+    return token.error().code == "storage" || token.error().code == "unavailable" ? 1 : 2;
   }
   out << *token << std::endl;
   err << "reenact-server: created user '" << args.positional[0]

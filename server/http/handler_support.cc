@@ -23,6 +23,13 @@ std::string NotFoundMessage(const std::string& id) { return "no clip '" + id.sub
 Response StorageFailure(const Error& error) {
   std::cerr << "reenact-server: storage error [" << error.code << "]: " << error.message
             << std::endl;
+  if (error.code == "unavailable") {
+    Response response = ErrorResponse(
+        503, "unavailable",
+        "the database is not reachable; retry in a few seconds (the server log has details)");
+    response.headers.emplace_back("Retry-After", std::to_string(kDatabaseRetryAfterSeconds));
+    return response;
+  }
   return ErrorResponse(500, "internal", "internal storage error; the server log has details");
 }
 

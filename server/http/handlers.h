@@ -24,7 +24,11 @@ std::variant<ClipRecord, Response> LoadVisibleClip(ServiceContext& context, cons
 // The clip if the user owns it: 404 if absent or another's draft, 403 if another's published.
 std::variant<ClipRecord, Response> LoadOwnedClip(ServiceContext& context, const std::string& id,
                                                  const UserRecord& user);
-// 500 "internal" for a failure of the store; the details go to stderr only.
+// Retry-After of a 503 for a database that cannot be reached.
+inline constexpr int kDatabaseRetryAfterSeconds = 2;
+// 503 "unavailable" with Retry-After for a database that cannot be reached (code
+// "unavailable"), 500 "internal" for any other failure of the store; the details go to stderr
+// only.
 Response StorageFailure(const Error& error);
 // The part index of a route: frame n (>= 0) or kMapPart; 400 for a malformed n.
 std::variant<int, Response> PartIndex(const RouteMatch& match);

@@ -4,7 +4,8 @@
 // with the fitting status (400 bad_request, 401 unauthorized, 403 forbidden, 404 not_found,
 // 405 method_not_allowed, 409 incomplete, 413 too_large, 415 unsupported_media_type,
 // 422 invalid_manifest / size_mismatch / hash_mismatch, 500 internal, 503 unavailable).
-// Storage failures are logged to stderr; the response says only "internal".
+// Storage failures are logged to stderr; the response says only "internal", or "unavailable"
+// (503 with Retry-After) while the database cannot be reached.
 
 #include <cstddef>
 #include <cstdint>

@@ -3,7 +3,8 @@
 // Storage-agnostic; SqliteMetadataStore is the embedded implementation, and a deployment that
 // outgrows one machine can implement this on PostgreSQL/PostGIS without touching the routes.
 // Every method is safe to call from several threads. Failures of the store itself come back
-// with code "storage"; they never carry user input back out.
+// with code "storage", or "unavailable" when the database server cannot be reached (the store
+// works again once it can: retry); they never carry user input back out.
 
 #include <cstddef>
 #include <cstdint>

@@ -1,6 +1,7 @@
 #include "server/storage/postgres.h"
 
 #include <libpq-fe.h>
+#include <poll.h>
 
 #include <cctype>
 #include <charconv>
@@ -29,6 +30,12 @@ std::string OneLine(const char* message) {
 }
 
 void IgnoreNotice(void*, const char*) {}
+
+// SQLSTATEs of a server that cannot serve this session: class 08 (connection exception),
+// 57P01 admin_shutdown, 57P02 crash_shutdown, 57P03 cannot_connect_now.
+bool IsUnavailableState(std::string_view state) {
+  return state.substr(0, 2) == "08" || state == "57P01" || state == "57P02" || state == "57P03";
+}
 
 }  // namespace
 
@@ -244,7 +251,18 @@ Connection& Connection::operator=(Connection&& other) noexcept {
 Connection::~Connection() { PQfinish(conn_); }
 
 void Connection::ReconnectIfBroken() {
-  if (PQstatus(conn_) == CONNECTION_BAD && !in_transaction_) {
+  if (in_transaction_) return;
+  if (PQstatus(conn_) == CONNECTION_OK) {
+    // An idle connection has nothing to read unless the server closed it (or sent it a
+    // notice of shutdown): read that now, so the statement goes to a live session.
+    // A stopping server sends its FATAL message first and closes after, so read until the
+    // socket has nothing more (a few rounds at most) or libpq sees the end.
+    for (int round = 0; round < 4 && PQstatus(conn_) == CONNECTION_OK; ++round) {
+      pollfd fd{PQsocket(conn_), POLLIN, 0};
+      if (fd.fd < 0 || ::poll(&fd, 1, 0) <= 0 || PQconsumeInput(conn_) == 0) break;
+    }
+  }
+  if (PQstatus(conn_) == CONNECTION_BAD) {
     PQreset(conn_);
     if (PQstatus(conn_) == CONNECTION_OK) PQsetNoticeProcessor(conn_, IgnoreNotice, nullptr);
   }
@@ -255,7 +273,15 @@ Error Connection::Fail(std::string_view what, pg_result* result) {
   last_sqlstate_ = state ? state : "";
   const char* message = result ? PQresultErrorMessage(result) : nullptr;
   if (!message || !*message) message = PQerrorMessage(conn_);
-  Error error = MakeError("storage", std::string(what) + ": " + OneLine(message));
+  // No SQLSTATE: libpq itself failed, on its link to the server (lost, or never reopened).
+  const bool unavailable = PQstatus(conn_) == CONNECTION_BAD || last_sqlstate_.empty() ||
+                           IsUnavailableState(last_sqlstate_);
+  Error error =
+      unavailable
+          ? MakeError("unavailable", std::string(what) + " is unavailable: " + OneLine(message) +
+                                         "; the connection is reopened on the next request "
+                                         "once the server runs again")
+          : MakeError("storage", std::string(what) + ": " + OneLine(message));
   PQclear(result);
   return error;
 }
@@ -311,14 +337,19 @@ Transaction::~Transaction() {
 Status Transaction::Commit() {
   REENACT_CHECK(db_ != nullptr, "commit of a finished transaction");
   Connection* db = std::exchange(db_, nullptr);
-  db->in_transaction_ = false;
-  // COMMIT of a transaction that saw an error answers ROLLBACK, not an error: refuse it first.
+  // in_transaction_ stays set until COMMIT is answered: a connection lost part way must not
+  // be reopened first, which would send COMMIT to a new session with no transaction.
+  Status committed;
   if (PQtransactionStatus(db->conn_) == PQTRANS_INERROR) {
+    // COMMIT of a transaction that saw an error answers ROLLBACK, not an error: refuse it first.
     (void)db->Exec("ROLLBACK");
-    return MakeError("storage", "PostgreSQL " + db->target_ +
-                                    ": the transaction failed earlier and was rolled back");
+    committed = MakeError("storage", "PostgreSQL " + db->target_ +
+                                         ": the transaction failed earlier and was rolled back");
+  } else {
+    committed = db->Exec("COMMIT");
   }
-  return db->Exec("COMMIT");
+  db->in_transaction_ = false;
+  return committed;
 }
 
 }  // namespace reenact::server::pg

@@ -6,6 +6,12 @@
 // in binary (for BYTEA). Errors the server reports at run time come back as Expected values
 // with code "storage" and the SQLSTATE kept apart, so callers can tell a unique violation
 // (23505) from other failures; misuse (a bad row or column index) is a CHECK failure.
+//
+// A server that went away (stopped, restarted, the network cut) gives code "unavailable"
+// instead, for every statement until it runs again; the connection is reopened before the
+// next statement outside a transaction, so the same Connection works again once the server
+// is back. A transaction cut part way is never resumed on a new session: its remaining
+// statements and its COMMIT fail "unavailable", and PostgreSQL discards all it wrote.
 
 #include <cstdint>
 #include <optional>
@@ -111,7 +117,8 @@ class Connection {
   Connection(pg_conn* conn, std::string target) : conn_(conn), target_(std::move(target)) {}
   friend class Transaction;
   Error Fail(std::string_view what, pg_result* result);
-  // Reconnects a connection the server dropped, unless a transaction was open on it.
+  // Reconnects a connection the server dropped or is closing (read from the socket without
+  // waiting), unless a transaction was open on it.
   void ReconnectIfBroken();
 
   pg_conn* conn_ = nullptr;

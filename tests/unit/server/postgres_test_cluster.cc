@@ -232,12 +232,22 @@ class Cluster {
       hba << "local all " << kPasswordRole << " scram-sha-256\nlocal all all trust\n";
       if (!hba) return MakeError("io", "cannot write the test cluster's pg_hba.conf");
     }
-    auto server = Spawn({(bin / "postgres").string(), "-D", data.string(), "-k", dir_.string(),
+    bin_ = bin;
+    who_ = who;
+    admin_url_ = "host=" + dir_.string() + " port=5432 user=reenact dbname=postgres";
+    return Launch();
+  }
+
+  // Starts postgres on the cluster's data directory and waits until it accepts connections.
+  Status Launch() {
+    const fs::path data = dir_ / "data";
+    const fs::path log = dir_ / "server.log";
+    auto server = Spawn({(bin_ / "postgres").string(), "-D", data.string(), "-k", dir_.string(),
                          "-p", "5432", "-c", "listen_addresses=", "-c", "fsync=off"},
-                        who, log, /*die_with_parent=*/true);
+                        who_, log, /*die_with_parent=*/true);
     if (!server) return server.error();
     server_ = *server;
-    admin_url_ = "host=" + dir_.string() + " port=5432 user=reenact dbname=postgres";
+    int status = 0;
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
     for (;;) {
       if (pg::Connection::Open(admin_url_).ok()) return {};
@@ -253,7 +263,41 @@ class Cluster {
     }
   }
 
+ public:
+  Status Stop(bool immediate) {
+    if (external_) {
+      return MakeError("unavailable",
+                       "REENACT_TEST_POSTGRES_URL is set: the tests do not stop that server");
+    }
+    if (server_ <= 0) return MakeError("io", "the test cluster is not running");
+    ::kill(server_, immediate ? SIGQUIT : SIGINT);
+    int status = 0;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (::waitpid(server_, &status, WNOHANG) == 0) {
+      if (std::chrono::steady_clock::now() > deadline) {
+        ::kill(server_, SIGKILL);
+        ::waitpid(server_, &status, 0);
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    server_ = 0;
+    return {};
+  }
+
+  Status Restart() {
+    if (external_) {
+      return MakeError("unavailable",
+                       "REENACT_TEST_POSTGRES_URL is set: the tests do not start that server");
+    }
+    if (server_ > 0) return MakeError("io", "the test cluster is already running");
+    return Launch();
+  }
+
+ private:
   fs::path dir_;
+  fs::path bin_;
+  RunAs who_;
   pid_t server_ = 0;
   std::string admin_url_;
   bool external_ = false;
@@ -282,6 +326,20 @@ Expected<std::string> PostgresTestPasswordLogin(const std::string& database,
   auto& cluster = TheCluster();
   if (!cluster) return cluster.error();
   return (*cluster)->PasswordLogin(database, password);
+}
+
+Status StopPostgresTestCluster(bool immediate) {
+  std::lock_guard lock(cluster_mutex);
+  auto& cluster = TheCluster();
+  if (!cluster) return cluster.error();
+  return (*cluster)->Stop(immediate);
+}
+
+Status StartPostgresTestCluster() {
+  std::lock_guard lock(cluster_mutex);
+  auto& cluster = TheCluster();
+  if (!cluster) return cluster.error();
+  return (*cluster)->Restart();
 }
 
 }  // namespace reenact::server::testing

@@ -30,4 +30,12 @@ Expected<std::string> NewPostgresTestDatabase();
 Expected<std::string> PostgresTestPasswordLogin(const std::string& database,
                                                 const std::string& password);
 
+// Stops the local test cluster and waits for its exit: immediate (SIGQUIT, as a crash:
+// sessions cut without a word) or fast (SIGINT: sessions told "terminating connection due to
+// administrator command" first). Its databases survive for StartPostgresTestCluster, which
+// starts it again on the same socket and waits until it accepts connections. Both
+// "unavailable" with REENACT_TEST_POSTGRES_URL, which the tests do not stop.
+Status StopPostgresTestCluster(bool immediate);
+Status StartPostgresTestCluster();
+
 }  // namespace reenact::server::testing
