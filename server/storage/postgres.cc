@@ -218,7 +218,11 @@ std::string Result::Bytes(int row, int column) const {
 Expected<Connection> Connection::Open(const std::string& url) {
   auto target = DescribeTarget(url);
   if (!target) return target.error();
-  pg_conn* conn = PQconnectdb(url.c_str());
+  // connect_timeout first, so that one in `url` overrides it; PQreset reuses both.
+  const char* const keywords[] = {"connect_timeout", "dbname", nullptr};
+  const std::string timeout = std::to_string(kDefaultConnectTimeoutSeconds);
+  const char* const values[] = {timeout.c_str(), url.c_str(), nullptr};
+  pg_conn* conn = PQconnectdbParams(keywords, values, /*expand_dbname=*/1);
   if (!conn) return MakeError("io", "cannot connect to PostgreSQL " + *target + ": out of memory");
   if (PQstatus(conn) != CONNECTION_OK) {
     std::string detail = OneLine(PQerrorMessage(conn));

@@ -42,6 +42,10 @@ Expected<std::string> WithDatabase(const std::string& url, const std::string& db
 // URLs only, such as reenact-server --db). Code "invalid_argument" for a malformed string.
 Expected<std::string> AsUrl(const std::string& conninfo);
 
+// Seconds a connection (or its reopening) may take unless the URL sets connect_timeout, so a
+// database host that stopped answering costs a request at most this long.
+inline constexpr int kDefaultConnectTimeoutSeconds = 10;
+
 // One statement parameter: text, binary bytes, or NULL.
 struct Param {
   Param(std::string_view text) : value(text) {}  // NOLINT: implicit by design
