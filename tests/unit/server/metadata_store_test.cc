@@ -368,7 +368,6 @@ TEST(PostgresMigrations, AppliedOnceFailingFileRollsBackNewerRefused) {
 }
 
 TEST(PostgresConnection, WrongPasswordIsOneClearLineWithoutThePassword) {
-  REENACT_POSTGRES_DATABASE_OR_SKIP(url);
   auto login = testing::PostgresTestPasswordLogin("postgres", "right-secret");
   if (!login && login.error().code == "unavailable") GTEST_SKIP() << login.error().message;
   ASSERT_TRUE(login.ok()) << login.error().message;

@@ -1,7 +1,7 @@
 // A PostgreSQL that goes away while the stores and routes serve, and comes back: the test
 // cluster (postgres_test_cluster.h) is stopped, immediately (as a crash) or fast (sessions
-// told first), and started again on the same data. Skipped where no cluster can be started,
-// or with REENACT_TEST_POSTGRES_URL, a server the tests do not stop.
+// told first), and started again on the same data: always the test process's own cluster,
+// never REENACT_TEST_POSTGRES_URL's server. Skipped where no cluster can be started.
 #include <gtest/gtest.h>
 
 #include "server/http/handlers.h"
@@ -47,6 +47,7 @@ class PostgresOutageTest : public testing::ServiceFixture,
                            public ::testing::WithParamInterface<StopMode> {
  protected:
   testing::Engine engine() const override { return testing::Engine::kPostgres; }
+  testing::TestCluster postgres_cluster() const override { return testing::TestCluster::kOwn; }
 
   // Stops the cluster, skipping where the tests may not.
   void StopCluster() {
@@ -156,7 +157,7 @@ TEST_P(PostgresOutageTest, RoutesAnswer503WithRetryAfterWhileStoppedAnd200Afterw
 }
 
 TEST_P(PostgresOutageTest, ATransactionCutPartWayWritesNothingAndIsNotCommittedOnANewSession) {
-  auto url = testing::NewPostgresTestDatabase();
+  auto url = testing::NewPostgresTestDatabase(testing::TestCluster::kOwn);
   if (!url && url.error().code == "unavailable") GTEST_SKIP() << url.error().message;
   ASSERT_TRUE(url.ok()) << url.error().message;
   auto db = pg::Connection::Open(*url);

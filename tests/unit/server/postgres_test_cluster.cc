@@ -115,19 +115,20 @@ Expected<pid_t> Spawn(const std::vector<std::string>& args, const RunAs& who, co
 
 class Cluster {
  public:
-  // Starts the process's cluster, or connects to REENACT_TEST_POSTGRES_URL.
-  static Expected<std::unique_ptr<Cluster>> Start() {
+  // The server at `url` (REENACT_TEST_POSTGRES_URL), where databases are created and dropped.
+  static Expected<std::unique_ptr<Cluster>> Connect(const std::string& url) {
     std::unique_ptr<Cluster> cluster(new Cluster);
-    if (const char* url = std::getenv("REENACT_TEST_POSTGRES_URL"); url && *url) {
-      cluster->admin_url_ = url;
-      cluster->external_ = true;
-      auto admin = pg::Connection::Open(cluster->admin_url_);
-      if (!admin) {
-        return MakeError("io", "REENACT_TEST_POSTGRES_URL: " + admin.error().message);
-      }
-      return cluster;
-    }
-    if (Status s = cluster->StartLocal(); !s) return s.error();
+    cluster->admin_url_ = url;
+    cluster->external_ = true;
+    auto admin = pg::Connection::Open(cluster->admin_url_);
+    if (!admin) return MakeError("io", "REENACT_TEST_POSTGRES_URL: " + admin.error().message);
+    return cluster;
+  }
+
+  // A cluster of this process under a new temporary directory.
+  static Expected<std::unique_ptr<Cluster>> StartLocal() {
+    std::unique_ptr<Cluster> cluster(new Cluster);
+    if (Status s = cluster->InitAndLaunch(); !s) return s.error();
     return cluster;
   }
 
@@ -166,10 +167,6 @@ class Cluster {
   }
 
   Expected<std::string> PasswordLogin(const std::string& database, const std::string& password) {
-    if (external_) {
-      return MakeError("unavailable",
-                       "REENACT_TEST_POSTGRES_URL is set: its authentication is not the tests'");
-    }
     auto admin = pg::Connection::Open(admin_url_);
     if (!admin) return admin.error();
     // The password is a test constant; quoted as a literal, doubling quotes.
@@ -188,7 +185,7 @@ class Cluster {
  private:
   Cluster() = default;
 
-  Status StartLocal() {
+  Status InitAndLaunch() {
     const fs::path bin = NewestServerBinDir();
     if (bin.empty()) {
       return MakeError("unavailable",
@@ -265,10 +262,6 @@ class Cluster {
 
  public:
   Status Stop(bool immediate) {
-    if (external_) {
-      return MakeError("unavailable",
-                       "REENACT_TEST_POSTGRES_URL is set: the tests do not stop that server");
-    }
     if (server_ <= 0) return MakeError("io", "the test cluster is not running");
     ::kill(server_, immediate ? SIGQUIT : SIGINT);
     int status = 0;
@@ -286,10 +279,6 @@ class Cluster {
   }
 
   Status Restart() {
-    if (external_) {
-      return MakeError("unavailable",
-                       "REENACT_TEST_POSTGRES_URL is set: the tests do not start that server");
-    }
     if (server_ > 0) return MakeError("io", "the test cluster is already running");
     return Launch();
   }
@@ -304,8 +293,17 @@ class Cluster {
   std::vector<std::string> created_;
 };
 
-Expected<std::unique_ptr<Cluster>>& TheCluster() {
-  static Expected<std::unique_ptr<Cluster>> cluster = Cluster::Start();
+// The cluster this process starts itself (once, at first use).
+Expected<std::unique_ptr<Cluster>>& OwnCluster() {
+  static Expected<std::unique_ptr<Cluster>> cluster = Cluster::StartLocal();
+  return cluster;
+}
+
+// REENACT_TEST_POSTGRES_URL's server where it is set, else the own cluster.
+Expected<std::unique_ptr<Cluster>>& SharedCluster() {
+  const char* url = std::getenv("REENACT_TEST_POSTGRES_URL");
+  if (!url || !*url) return OwnCluster();
+  static Expected<std::unique_ptr<Cluster>> cluster = Cluster::Connect(url);
   return cluster;
 }
 
@@ -313,9 +311,9 @@ std::mutex cluster_mutex;
 
 }  // namespace
 
-Expected<std::string> NewPostgresTestDatabase() {
+Expected<std::string> NewPostgresTestDatabase(TestCluster which) {
   std::lock_guard lock(cluster_mutex);
-  auto& cluster = TheCluster();
+  auto& cluster = which == TestCluster::kShared ? SharedCluster() : OwnCluster();
   if (!cluster) return cluster.error();
   return (*cluster)->NewDatabase();
 }
@@ -323,21 +321,21 @@ Expected<std::string> NewPostgresTestDatabase() {
 Expected<std::string> PostgresTestPasswordLogin(const std::string& database,
                                                 const std::string& password) {
   std::lock_guard lock(cluster_mutex);
-  auto& cluster = TheCluster();
+  auto& cluster = OwnCluster();
   if (!cluster) return cluster.error();
   return (*cluster)->PasswordLogin(database, password);
 }
 
 Status StopPostgresTestCluster(bool immediate) {
   std::lock_guard lock(cluster_mutex);
-  auto& cluster = TheCluster();
+  auto& cluster = OwnCluster();
   if (!cluster) return cluster.error();
   return (*cluster)->Stop(immediate);
 }
 
 Status StartPostgresTestCluster() {
   std::lock_guard lock(cluster_mutex);
-  auto& cluster = TheCluster();
+  auto& cluster = OwnCluster();
   if (!cluster) return cluster.error();
   return (*cluster)->Restart();
 }

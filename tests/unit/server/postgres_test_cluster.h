@@ -6,8 +6,10 @@
 // user (PostgreSQL refuses root); if the test process dies without stopping it, the server gets
 // SIGQUIT (immediate shutdown) from the kernel.
 //
-// With REENACT_TEST_POSTGRES_URL set, databases are created on that server instead (its role
-// needs CREATEDB, and PostGIS must be installed there) and dropped at exit.
+// With REENACT_TEST_POSTGRES_URL set (.ci/run starts one cluster for the whole run, which
+// saves starting one per test process), databases are created on that server instead (its
+// role needs CREATEDB, and PostGIS must be installed there) and dropped at exit. Tests that
+// stop the server or log in by password still use a cluster of their own (TestCluster::kOwn).
 //
 // Where neither is possible (no PostgreSQL server or PostGIS installed, or root without a
 // `postgres` user) the error has code "unavailable", and a test skips:
@@ -21,20 +23,24 @@
 
 namespace reenact::server::testing {
 
-// The connection string of a new empty database (named uniquely within the process).
-Expected<std::string> NewPostgresTestDatabase();
+enum class TestCluster {
+  kShared,  // REENACT_TEST_POSTGRES_URL's server where it is set, else kOwn
+  kOwn,     // the cluster this process starts (the one the functions below act on)
+};
 
-// A role of the local test cluster that must log in with `password` (scram-sha-256; every
+// The connection string of a new empty database (named uniquely within the process).
+Expected<std::string> NewPostgresTestDatabase(TestCluster which = TestCluster::kShared);
+
+// A role of the own test cluster that must log in with `password` (scram-sha-256; every
 // other role is trusted): the connection string of `database` as that role, without the
-// password. "unavailable" with REENACT_TEST_POSTGRES_URL, whose authentication is not ours.
+// password.
 Expected<std::string> PostgresTestPasswordLogin(const std::string& database,
                                                 const std::string& password);
 
-// Stops the local test cluster and waits for its exit: immediate (SIGQUIT, as a crash:
+// Stops the own test cluster and waits for its exit: immediate (SIGQUIT, as a crash:
 // sessions cut without a word) or fast (SIGINT: sessions told "terminating connection due to
 // administrator command" first). Its databases survive for StartPostgresTestCluster, which
-// starts it again on the same socket and waits until it accepts connections. Both
-// "unavailable" with REENACT_TEST_POSTGRES_URL, which the tests do not stop.
+// starts it again on the same socket and waits until it accepts connections.
 Status StopPostgresTestCluster(bool immediate);
 Status StartPostgresTestCluster();
 

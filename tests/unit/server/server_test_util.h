@@ -75,10 +75,11 @@ inline std::string EngineName(const ::testing::TestParamInfo<Engine>& info) {
 }
 
 // New empty storage on `engine`: a SQLite file in `dir`, or a fresh database of the PostgreSQL
-// test cluster (postgres_test_cluster.h; code "unavailable" where none can be started).
-inline Expected<Storage> OpenTestStorage(Engine engine, const TempDir& dir) {
+// test cluster `which` (postgres_test_cluster.h; code "unavailable" where none can be started).
+inline Expected<Storage> OpenTestStorage(Engine engine, const TempDir& dir,
+                                         TestCluster which = TestCluster::kShared) {
   if (engine == Engine::kSqlite) return OpenSqliteStorage((dir.path() / "db.sqlite").string());
-  auto url = NewPostgresTestDatabase();
+  auto url = NewPostgresTestDatabase(which);
   if (!url) return url.error();
   return OpenPostgresStorage(*url);
 }
@@ -88,9 +89,11 @@ inline Expected<Storage> OpenTestStorage(Engine engine, const TempDir& dir) {
 class ServiceFixture : public ::testing::Test {
  protected:
   virtual Engine engine() const { return Engine::kSqlite; }
+  // The PostgreSQL cluster of Engine::kPostgres: kOwn for tests that stop it.
+  virtual TestCluster postgres_cluster() const { return TestCluster::kShared; }
 
   void SetUp() override {
-    auto opened = OpenTestStorage(engine(), dir_);
+    auto opened = OpenTestStorage(engine(), dir_, postgres_cluster());
     if (!opened && opened.error().code == "unavailable") GTEST_SKIP() << opened.error().message;
     ASSERT_TRUE(opened.ok()) << opened.error().message;
     storage_ = std::move(*opened);
