@@ -239,7 +239,8 @@ Connection::Connection(Connection&& other) noexcept
     : conn_(std::exchange(other.conn_, nullptr)),
       target_(std::move(other.target_)),
       last_sqlstate_(std::move(other.last_sqlstate_)),
-      in_transaction_(std::exchange(other.in_transaction_, false)) {}
+      in_transaction_(std::exchange(other.in_transaction_, false)),
+      prepared_(std::move(other.prepared_)) {}
 
 Connection& Connection::operator=(Connection&& other) noexcept {
   if (this != &other) {
@@ -248,6 +249,7 @@ Connection& Connection::operator=(Connection&& other) noexcept {
     target_ = std::move(other.target_);
     last_sqlstate_ = std::move(other.last_sqlstate_);
     in_transaction_ = std::exchange(other.in_transaction_, false);
+    prepared_ = std::move(other.prepared_);
   }
   return *this;
 }
@@ -267,6 +269,7 @@ void Connection::ReconnectIfBroken() {
     }
   }
   if (PQstatus(conn_) == CONNECTION_BAD) {
+    prepared_.clear();  // a new session has none of the old one's prepared statements
     PQreset(conn_);
     if (PQstatus(conn_) == CONNECTION_OK) PQsetNoticeProcessor(conn_, IgnoreNotice, nullptr);
   }
@@ -314,9 +317,23 @@ Expected<Result> Connection::Query(const std::string& sql, const std::vector<Par
     lengths[i] = params[i].value ? static_cast<int>(params[i].value->size()) : 0;
     formats[i] = params[i].binary ? 1 : 0;
   }
+  auto name = prepared_.find(sql);
+  if (name == prepared_.end() && prepared_.size() < kMaxPreparedStatements) {
+    std::string next = "reenact_" + std::to_string(prepared_.size());
+    pg_result* prepared =
+        PQprepare(conn_, next.c_str(), sql.c_str(), static_cast<int>(params.size()), nullptr);
+    if (!prepared || PQresultStatus(prepared) != PGRES_COMMAND_OK) {
+      return Fail("PostgreSQL " + target_, prepared);
+    }
+    PQclear(prepared);
+    name = prepared_.emplace(sql, std::move(next)).first;
+  }
   pg_result* result =
-      PQexecParams(conn_, sql.c_str(), static_cast<int>(params.size()), nullptr, values.data(),
-                   lengths.data(), formats.data(), binary_result ? 1 : 0);
+      name != prepared_.end()
+          ? PQexecPrepared(conn_, name->second.c_str(), static_cast<int>(params.size()),
+                           values.data(), lengths.data(), formats.data(), binary_result ? 1 : 0)
+          : PQexecParams(conn_, sql.c_str(), static_cast<int>(params.size()), nullptr,
+                         values.data(), lengths.data(), formats.data(), binary_result ? 1 : 0);
   const ExecStatusType status = result ? PQresultStatus(result) : PGRES_FATAL_ERROR;
   if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK) {
     return Fail("PostgreSQL " + target_, result);

@@ -17,6 +17,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "common/error/expected.h"
@@ -107,7 +108,9 @@ class Connection {
   // Runs one or more statements without parameters (a migration file).
   Status Exec(const std::string& sql);
   // Runs one statement with parameters. binary_result: every column comes back in binary
-  // (for reading one BYTEA column as raw bytes with Result::Text).
+  // (for reading one BYTEA column as raw bytes with Result::Text). The first
+  // kMaxPreparedStatements distinct statements are prepared once per session and executed by
+  // name after that (no parse and plan per call); any further one is sent whole each time.
   Expected<Result> Query(const std::string& sql, const std::vector<Param>& params = {},
                          bool binary_result = false);
   // The SQLSTATE of the last failed Exec or Query ("" when it succeeded or the connection
@@ -125,10 +128,13 @@ class Connection {
   // waiting), unless a transaction was open on it.
   void ReconnectIfBroken();
 
+  static constexpr size_t kMaxPreparedStatements = 64;
+
   pg_conn* conn_ = nullptr;
   std::string target_;
   std::string last_sqlstate_;
   bool in_transaction_ = false;
+  std::unordered_map<std::string, std::string> prepared_;  // statement text -> name
 };
 
 // BEGIN on construction via Begin(); ROLLBACK on destruction unless committed.

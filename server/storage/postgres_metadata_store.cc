@@ -59,28 +59,34 @@ double PrefilterMarginM(double distance_m) { return distance_m * 1e-6 + 1.0; }
 }  // namespace
 
 Expected<std::unique_ptr<PostgresMetadataStore>> PostgresMetadataStore::Open(
-    const std::string& url) {
-  auto db = pg::Connection::Open(url);
-  if (!db) return db.error();
-  if (Status s = ApplyPostgresMigrations(*db, EmbeddedPostgresMigrations()); !s) return s.error();
-  return std::unique_ptr<PostgresMetadataStore>(new PostgresMetadataStore(std::move(*db)));
+    const std::string& url, int connections) {
+  {
+    auto db = pg::Connection::Open(url);
+    if (!db) return db.error();
+    if (Status s = ApplyPostgresMigrations(*db, EmbeddedPostgresMigrations()); !s) {
+      return s.error();
+    }
+  }
+  auto pool = pg::ConnectionPool::Open(url, connections);
+  if (!pool) return pool.error();
+  return std::unique_ptr<PostgresMetadataStore>(new PostgresMetadataStore(std::move(*pool)));
 }
 
 Expected<UserRecord> PostgresMetadataStore::AddUser(const std::string& name,
                                                     const std::string& token_sha256) {
-  std::lock_guard lock(mutex_);
-  auto tx = pg::Transaction::Begin(db_);
+  pg::ConnectionPool::Lease db = pool_->Acquire();
+  auto tx = pg::Transaction::Begin(*db);
   if (!tx) return tx.error();
-  auto user = db_.Query("INSERT INTO users(name, created_at) VALUES ($1, $2) RETURNING id",
+  auto user = db->Query("INSERT INTO users(name, created_at) VALUES ($1, $2) RETURNING id",
                         {name, NowUnix()});
   if (!user) {
-    if (db_.last_sqlstate() == pg::kUniqueViolation) {
+    if (db->last_sqlstate() == pg::kUniqueViolation) {
       return MakeError("conflict", "a user named '" + name + "' already exists");
     }
     return user.error();
   }
   UserRecord record{user->Int(0, 0), name};
-  if (auto token = db_.Query(
+  if (auto token = db->Query(
           "INSERT INTO tokens(user_id, token_sha256, created_at) VALUES ($1, $2, $3)",
           {record.id, token_sha256, NowUnix()});
       !token) {
@@ -92,8 +98,8 @@ Expected<UserRecord> PostgresMetadataStore::AddUser(const std::string& name,
 
 Expected<std::optional<TokenOwner>> PostgresMetadataStore::FindUserByTokenHash(
     const std::string& token_sha256) {
-  std::lock_guard lock(mutex_);
-  auto rows = db_.Query(
+  pg::ConnectionPool::Lease db = pool_->Acquire();
+  auto rows = db->Query(
       "SELECT u.id, u.name, t.token_sha256 FROM tokens t JOIN users u ON u.id = t.user_id "
       "WHERE t.token_sha256 = $1",
       {token_sha256});
@@ -105,13 +111,13 @@ Expected<std::optional<TokenOwner>> PostgresMetadataStore::FindUserByTokenHash(
 
 Expected<UserRecord> PostgresMetadataStore::AddToken(const std::string& user_name,
                                                      const std::string& token_sha256) {
-  std::lock_guard lock(mutex_);
-  auto tx = pg::Transaction::Begin(db_);
+  pg::ConnectionPool::Lease db = pool_->Acquire();
+  auto tx = pg::Transaction::Begin(*db);
   if (!tx) return tx.error();
-  auto user = UserByName(db_, user_name);
+  auto user = UserByName(*db, user_name);
   if (!user) return user.error();
   if (!*user) return MakeError("not_found", "no user named '" + user_name + "'");
-  if (auto insert = db_.Query(
+  if (auto insert = db->Query(
           "INSERT INTO tokens(user_id, token_sha256, created_at) VALUES ($1, $2, $3)",
           {(*user)->id, token_sha256, NowUnix()});
       !insert) {
@@ -122,20 +128,20 @@ Expected<UserRecord> PostgresMetadataStore::AddToken(const std::string& user_nam
 }
 
 Expected<bool> PostgresMetadataStore::RevokeToken(const std::string& token_sha256) {
-  std::lock_guard lock(mutex_);
-  auto deleted = db_.Query("DELETE FROM tokens WHERE token_sha256 = $1", {token_sha256});
+  pg::ConnectionPool::Lease db = pool_->Acquire();
+  auto deleted = db->Query("DELETE FROM tokens WHERE token_sha256 = $1", {token_sha256});
   if (!deleted) return deleted.error();
   return deleted->affected() > 0;
 }
 
 Expected<int> PostgresMetadataStore::RevokeUserTokens(const std::string& user_name) {
-  std::lock_guard lock(mutex_);
-  auto tx = pg::Transaction::Begin(db_);
+  pg::ConnectionPool::Lease db = pool_->Acquire();
+  auto tx = pg::Transaction::Begin(*db);
   if (!tx) return tx.error();
-  auto user = UserByName(db_, user_name);
+  auto user = UserByName(*db, user_name);
   if (!user) return user.error();
   if (!*user) return MakeError("not_found", "no user named '" + user_name + "'");
-  auto deleted = db_.Query("DELETE FROM tokens WHERE user_id = $1", {(*user)->id});
+  auto deleted = db->Query("DELETE FROM tokens WHERE user_id = $1", {(*user)->id});
   if (!deleted) return deleted.error();
   const int revoked = static_cast<int>(deleted->affected());
   if (Status s = tx->Commit(); !s) return s.error();
@@ -143,8 +149,8 @@ Expected<int> PostgresMetadataStore::RevokeUserTokens(const std::string& user_na
 }
 
 Expected<std::vector<UserRecord>> PostgresMetadataStore::ListUsers() {
-  std::lock_guard lock(mutex_);
-  auto rows = db_.Query("SELECT id, name FROM users ORDER BY id", {});
+  pg::ConnectionPool::Lease db = pool_->Acquire();
+  auto rows = db->Query("SELECT id, name FROM users ORDER BY id", {});
   if (!rows) return rows.error();
   std::vector<UserRecord> users;
   for (int i = 0; i < rows->rows(); ++i) {
@@ -154,9 +160,9 @@ Expected<std::vector<UserRecord>> PostgresMetadataStore::ListUsers() {
 }
 
 Expected<std::vector<std::string>> PostgresMetadataStore::TokenHashesOfUser(int64_t user_id) {
-  std::lock_guard lock(mutex_);
+  pg::ConnectionPool::Lease db = pool_->Acquire();
   auto rows =
-      db_.Query("SELECT token_sha256 FROM tokens WHERE user_id = $1 ORDER BY id", {user_id});
+      db->Query("SELECT token_sha256 FROM tokens WHERE user_id = $1 ORDER BY id", {user_id});
   if (!rows) return rows.error();
   std::vector<std::string> hashes;
   for (int i = 0; i < rows->rows(); ++i) hashes.push_back(rows->Text(i, 0));
@@ -164,25 +170,25 @@ Expected<std::vector<std::string>> PostgresMetadataStore::TokenHashesOfUser(int6
 }
 
 Status PostgresMetadataStore::CreateClip(const NewClip& clip) {
-  std::lock_guard lock(mutex_);
-  auto tx = pg::Transaction::Begin(db_);
+  pg::ConnectionPool::Lease db = pool_->Acquire();
+  auto tx = pg::Transaction::Begin(*db);
   if (!tx) return tx.error();
   const ClipRecord& r = clip.record;
-  auto key = db_.Query(
+  auto key = db->Query(
       "INSERT INTO clips(public_id, owner_id, state, title, author, lat_deg, lon_deg, alt_m, "
       "duration_s, frame_count, manifest, manifest_sha256, created_at) "
       "VALUES ($1, $2, 'draft', $3, $4, $5, $6, $7, $8, $9, $10, $11, $12) RETURNING clip_key",
       {r.id, r.owner_id, r.title, r.author, r.lat_deg, r.lon_deg, r.alt_m, r.duration_s,
        r.frame_count, pg::Param::Bytes(clip.manifest_json), r.manifest_sha256, NowUnix()});
   if (!key) {
-    if (db_.last_sqlstate() == pg::kUniqueViolation) {
+    if (db->last_sqlstate() == pg::kUniqueViolation) {
       return MakeError("conflict", "clip id already exists");
     }
     return key.error();
   }
   const int64_t clip_key = key->Int(0, 0);
   for (const PartSpec& spec : clip.parts) {
-    if (auto part = db_.Query(
+    if (auto part = db->Query(
             "INSERT INTO clip_parts(clip_key, part_index, bytes, sha256) VALUES ($1, $2, $3, $4)",
             {clip_key, spec.index, spec.bytes, spec.sha256});
         !part) {
@@ -193,8 +199,8 @@ Status PostgresMetadataStore::CreateClip(const NewClip& clip) {
 }
 
 Expected<std::optional<ClipRecord>> PostgresMetadataStore::GetClip(const std::string& id) {
-  std::lock_guard lock(mutex_);
-  auto rows = db_.Query(
+  pg::ConnectionPool::Lease db = pool_->Acquire();
+  auto rows = db->Query(
       std::string("SELECT ") + kClipColumns + " FROM clips c WHERE c.public_id = $1", {id});
   if (!rows) return rows.error();
   if (rows->rows() == 0) return std::optional<ClipRecord>();
@@ -202,9 +208,9 @@ Expected<std::optional<ClipRecord>> PostgresMetadataStore::GetClip(const std::st
 }
 
 Expected<std::string> PostgresMetadataStore::GetManifest(const std::string& id) {
-  std::lock_guard lock(mutex_);
+  pg::ConnectionPool::Lease db = pool_->Acquire();
   // Binary result: the BYTEA comes back as the bytes themselves.
-  auto rows = db_.Query("SELECT manifest FROM clips WHERE public_id = $1", {id},
+  auto rows = db->Query("SELECT manifest FROM clips WHERE public_id = $1", {id},
                         /*binary_result=*/true);
   if (!rows) return rows.error();
   if (rows->rows() == 0) return MakeError("not_found", "no clip " + id);
@@ -213,8 +219,8 @@ Expected<std::string> PostgresMetadataStore::GetManifest(const std::string& id) 
 
 Expected<std::optional<PartRecord>> PostgresMetadataStore::GetPart(const std::string& id,
                                                                    int index) {
-  std::lock_guard lock(mutex_);
-  auto rows = db_.Query(
+  pg::ConnectionPool::Lease db = pool_->Acquire();
+  auto rows = db->Query(
       "SELECT p.bytes, p.sha256, p.present FROM clip_parts p JOIN clips c "
       "ON c.clip_key = p.clip_key WHERE c.public_id = $1 AND p.part_index = $2",
       {id, index});
@@ -227,12 +233,12 @@ Expected<std::optional<PartRecord>> PostgresMetadataStore::GetPart(const std::st
 }
 
 Expected<std::vector<PartRecord>> PostgresMetadataStore::ListParts(const std::string& id) {
-  std::lock_guard lock(mutex_);
-  auto key = ClipKey(db_, id);
+  pg::ConnectionPool::Lease db = pool_->Acquire();
+  auto key = ClipKey(*db, id);
   if (!key) return key.error();
   if (!*key) return MakeError("not_found", "no clip " + id);
   // Frames 0..n-1 first, then the map (index -1): false sorts before true.
-  auto rows = db_.Query(
+  auto rows = db->Query(
       "SELECT part_index, bytes, sha256, present FROM clip_parts WHERE clip_key = $1 "
       "ORDER BY part_index < 0, part_index",
       {**key});
@@ -249,8 +255,8 @@ Expected<std::vector<PartRecord>> PostgresMetadataStore::ListParts(const std::st
 }
 
 Status PostgresMetadataStore::MarkPartPresent(const std::string& id, int index) {
-  std::lock_guard lock(mutex_);
-  auto updated = db_.Query(
+  pg::ConnectionPool::Lease db = pool_->Acquire();
+  auto updated = db->Query(
       "UPDATE clip_parts SET present = TRUE WHERE part_index = $2 AND clip_key = "
       "(SELECT clip_key FROM clips WHERE public_id = $1)",
       {id, index});
@@ -260,13 +266,13 @@ Status PostgresMetadataStore::MarkPartPresent(const std::string& id, int index) 
 }
 
 Expected<PublishResult> PostgresMetadataStore::Publish(const std::string& id) {
-  std::lock_guard lock(mutex_);
-  auto tx = pg::Transaction::Begin(db_);
+  pg::ConnectionPool::Lease db = pool_->Acquire();
+  auto tx = pg::Transaction::Begin(*db);
   if (!tx) return tx.error();
-  auto key = ClipKey(db_, id, /*lock=*/true);
+  auto key = ClipKey(*db, id, /*lock=*/true);
   if (!key) return key.error();
   if (!*key) return MakeError("not_found", "no clip " + id);
-  auto missing = db_.Query(
+  auto missing = db->Query(
       "SELECT part_index FROM clip_parts WHERE clip_key = $1 AND NOT present "
       "ORDER BY part_index",
       {**key});
@@ -276,7 +282,7 @@ Expected<PublishResult> PostgresMetadataStore::Publish(const std::string& id) {
     result.missing_parts.push_back(static_cast<int>(missing->Int(i, 0)));
   }
   if (!result.missing_parts.empty()) return result;
-  if (auto update = db_.Query(
+  if (auto update = db->Query(
           "UPDATE clips SET state = 'published', published_at = COALESCE(published_at, $2) "
           "WHERE clip_key = $1",
           {**key, NowUnix()});
@@ -289,15 +295,15 @@ Expected<PublishResult> PostgresMetadataStore::Publish(const std::string& id) {
 }
 
 Expected<bool> PostgresMetadataStore::DeleteClip(const std::string& id) {
-  std::lock_guard lock(mutex_);
-  auto deleted = db_.Query("DELETE FROM clips WHERE public_id = $1", {id});
+  pg::ConnectionPool::Lease db = pool_->Acquire();
+  auto deleted = db->Query("DELETE FROM clips WHERE public_id = $1", {id});
   if (!deleted) return deleted.error();
   return deleted->affected() > 0;
 }
 
 Expected<std::vector<ClipRecord>> PostgresMetadataStore::ClipsOfOwner(int64_t owner_id) {
-  std::lock_guard lock(mutex_);
-  auto rows = db_.Query(std::string("SELECT ") + kClipColumns +
+  pg::ConnectionPool::Lease db = pool_->Acquire();
+  auto rows = db->Query(std::string("SELECT ") + kClipColumns +
                             " FROM clips c WHERE c.owner_id = $1 ORDER BY c.created_at, "
                             "c.public_id",
                         {owner_id});
@@ -326,8 +332,8 @@ Expected<std::vector<NearbyHit>> PostgresMetadataStore::Nearby(const NearbyQuery
   }
   pg::Param row_bound = pg::Param::Null();
   if (query.max_scanned > 0) row_bound = pg::Param(static_cast<int64_t>(query.max_scanned) + 1);
-  std::lock_guard lock(mutex_);
-  auto rows = db_.Query(kNearbySql, {query.lat_deg, query.lon_deg,
+  pg::ConnectionPool::Lease db = pool_->Acquire();
+  auto rows = db->Query(kNearbySql, {query.lat_deg, query.lon_deg,
                                      query.radius_m + PrefilterMarginM(query.radius_m), after_bound, row_bound});
   if (!rows) return rows.error();
   if (query.max_scanned > 0 && static_cast<size_t>(rows->rows()) > query.max_scanned) {
@@ -354,8 +360,8 @@ Expected<std::vector<NearbyHit>> PostgresMetadataStore::Nearby(const NearbyQuery
 }
 
 Expected<int64_t> PostgresMetadataStore::CountClips(ClipState state) {
-  std::lock_guard lock(mutex_);
-  auto rows = db_.Query("SELECT COUNT(*) FROM clips WHERE state = $1",
+  pg::ConnectionPool::Lease db = pool_->Acquire();
+  auto rows = db->Query("SELECT COUNT(*) FROM clips WHERE state = $1",
                         {state == ClipState::kPublished ? "published" : "draft"});
   if (!rows) return rows.error();
   return rows->Int(0, 0);

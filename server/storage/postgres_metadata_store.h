@@ -10,18 +10,17 @@
 // store computes it. Both engines therefore report bit-identical distances and page through
 // the same (distance, id) keys, so a cursor means the same on either.
 //
-// One connection, guarded by a mutex; every method is safe to call from several threads.
-// A connection the server dropped is reopened before the next statement (outside a
-// transaction).
+// A pool of connections, one lent to each call for its duration, so that several handler
+// threads query at once; every method is safe to call from several threads. A connection the
+// server dropped is reopened before the next statement (outside a transaction).
 
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "server/storage/metadata_store.h"
-#include "server/storage/postgres.h"
+#include "server/storage/postgres_pool.h"
 
 namespace reenact::server {
 
@@ -31,7 +30,11 @@ class PostgresMetadataStore : public MetadataStore {
   // migrations. Codes: "invalid_argument" for a malformed URL, "io" when the server cannot be
   // reached or refuses the login (one line, never the password), "schema_too_new",
   // "migration_failed".
-  static Expected<std::unique_ptr<PostgresMetadataStore>> Open(const std::string& url);
+  static Expected<std::unique_ptr<PostgresMetadataStore>> Open(
+      const std::string& url, int connections = kDefaultConnections);
+
+  // Default number of connections: as many as the server's default handler threads use.
+  static constexpr int kDefaultConnections = 4;
 
   Expected<UserRecord> AddUser(const std::string& name, const std::string& token_sha256) override;
   Expected<std::optional<TokenOwner>> FindUserByTokenHash(
@@ -55,10 +58,10 @@ class PostgresMetadataStore : public MetadataStore {
   Expected<int64_t> CountClips(ClipState state) override;
 
  private:
-  explicit PostgresMetadataStore(pg::Connection db) : db_(std::move(db)) {}
+  explicit PostgresMetadataStore(std::shared_ptr<pg::ConnectionPool> pool)
+      : pool_(std::move(pool)) {}
 
-  std::mutex mutex_;
-  pg::Connection db_;
+  std::shared_ptr<pg::ConnectionPool> pool_;
 };
 
 }  // namespace reenact::server
