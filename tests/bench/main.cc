@@ -21,8 +21,11 @@ constexpr const char* kUsage =
     "usage:\n"
     "  reenact-bench core [--repeats R] [--quick] [--only GROUP] [--json FILE]\n"
     "                     groups: selection, mapping, render, model\n"
-    "  reenact-bench server [--quick] [--clips N] [--clients C] [--seconds S] [--db DIR]\n"
+    "  reenact-bench server [--quick] [--clips N] [--clients C] [--seconds S]\n"
+    "                       [--db DIR|postgresql://URL] [--kills K] [--server PATH]\n"
     "                       [--json FILE]\n"
+    "                       with a URL: SQLite and PostgreSQL in one table, then two\n"
+    "                       reenact-server processes on it and K random SIGKILLs (50)\n"
     "  reenact-bench server --attacks [--only GROUP] [--clips N] [--clients C] [--seconds S]\n"
     "                       [--json FILE]\n"
     "                       instead, the server under attack: 10^4 clips, S = 8 s per\n"
@@ -66,7 +69,7 @@ int Core(const CommandLine& cl) {
 int main(int argc, char** argv) {
   // Flags of every command; each command reads its own.
   const CommandLineSpec spec{{"repeats", "only", "json", "clips", "clients", "seconds", "db", "oni",
-                              "tum", "frames", "texturing"},
+                              "tum", "frames", "texturing", "kills", "server"},
                              {"quick", "attacks"}};
   return RunTool("reenact-bench", kUsage, spec,
                  {{"core", Core},

@@ -9,6 +9,12 @@
 // N is 10^5 and 10^6 (only 10^5 with --quick; --clips N picks one). Loopback only.
 // With --db DIR the seeded databases stay in DIR as bench-N.db, and a later run with the same
 // N reuses one that holds N published clips (the uploads add only drafts).
+// With --db postgresql://... each N runs on SQLite (a temporary file) and then on that
+// PostgreSQL database, in one table (column engine); the database is the bench's own: its
+// "seed" user's clips are replaced unless it already holds N of them. PostgreSQL uploads are
+// synced as its server is configured, so they have no unsynced row. Then the kill run
+// (server_kill_bench.h): two `reenact-server` processes (--server PATH, default the build
+// tree's) on that database and --kills K random SIGKILLs (default 50).
 // --attacks runs only the adversarial section instead (server_attack_bench.h): 10^4 clips
 // (--clips N), C normal clients, S seconds per measurement (default 8), about 3 minutes.
 #include "tests/bench/server_bench.h"
@@ -36,6 +42,7 @@
 #include "tests/bench/bench_support.h"
 #include "tests/bench/server_attack_bench.h"
 #include "tests/bench/server_bench_support.h"
+#include "tests/bench/server_kill_bench.h"
 
 namespace reenact::bench {
 namespace {
@@ -49,8 +56,11 @@ struct Settings {
   std::vector<long long> clip_counts;
   int clients = 4;
   double seconds = 3;
-  std::string db_dir;   // where the databases go (a temp dir unless --db DIR)
+  std::string db_dir;   // where the SQLite databases go (a temp dir unless --db DIR)
   bool keep_db = false;  // --db DIR: seeded databases stay there and later runs reuse them
+  std::string postgres_url;  // --db URL: PostgreSQL beside SQLite, and the kill run
+  std::string server_binary;  // reenact-server, for the kill run's server processes
+  int kills = 50;
 };
 
 // Nearby through the metadata store alone: microseconds per query.
@@ -188,26 +198,14 @@ Expected<LoadResult> UploadLoad(uint16_t port, const std::string& url, const std
   return r;
 }
 
-// The number of published clips in a database an earlier run seeded, or -1 when there is no
-// usable one (absent, another schema, unreadable).
-long long SeededClips(const std::string& db_path) {
-  if (!std::filesystem::exists(db_path)) return -1;
-  auto db = server::sqlite::Database::Open(db_path);
-  if (!db) return -1;
-  auto count = db->Prepare("SELECT COUNT(*) FROM clips WHERE state = 'published'");
-  if (!count) return -1;
-  auto row = count->Step();
-  if (!row || !*row) return -1;
-  return count->ColumnInt(0);
-}
-
-Status UploadRow(const std::string& name, uint16_t port, const std::string& url,
-                 const std::string& token, long long count, const Settings& settings,
-                 proto::Report& report) {
+Status UploadRow(const std::string& name, const std::string& engine, uint16_t port,
+                 const std::string& url, const std::string& token, long long count,
+                 const Settings& settings, proto::Report& report) {
   auto upload = UploadLoad(port, url, token, settings);
   if (!upload) return upload.error();
   report.rows.push_back(proto::ReportRow()
                             .Add("test", name)
+                            .Add("engine", engine)
                             .Add("n", count)
                             .Add("clients", static_cast<long long>(settings.clients))
                             .Add("mb_per_s", upload->mb_per_s)
@@ -217,22 +215,38 @@ Status UploadRow(const std::string& name, uint16_t port, const std::string& url,
   return {};
 }
 
-Status RunOne(long long count, const Settings& settings, proto::Report& report) {
-  // A kept database (--db DIR) is named by its clip count alone, so the next run finds it.
-  const std::string db_path =
-      settings.db_dir + "/bench-" + std::to_string(count) +
-      (settings.keep_db ? std::string() : "-" + std::to_string(getpid())) + ".db";
-  if (settings.keep_db && SeededClips(db_path) == count) {
-    std::cerr << "reenact-bench: reusing " << db_path << std::endl;
-  } else {
-    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(db_path + suffix);
-    const auto seed_start = Clock::now();
-    if (Status s = Seed(db_path, count); !s) return s;
-    const double seed_s = std::chrono::duration<double>(Clock::now() - seed_start).count();
-    std::cerr << "reenact-bench: seeded " << count << " clips in " << seed_s << " s" << std::endl;
+// The database of `count` seeded clips on `engine` ("sqlite": a file in db_dir, reused when
+// kept; "postgresql": settings.postgres_url, reused when it holds exactly `count`).
+Expected<std::string> SeededDatabase(const std::string& engine, long long count,
+                                     const Settings& settings) {
+  std::string db = settings.postgres_url;
+  if (engine == "sqlite") {
+    // A kept database (--db DIR) is named by its clip count alone, so the next run finds it.
+    db = settings.db_dir + "/bench-" + std::to_string(count) +
+         (settings.keep_db ? std::string() : "-" + std::to_string(getpid())) + ".db";
   }
+  if ((settings.keep_db || engine == "postgresql") && SeededClips(db) == count) {
+    std::cerr << "reenact-bench: reusing " << count << " seeded clips on " << engine << std::endl;
+    return db;
+  }
+  const auto seed_start = Clock::now();
+  if (engine == "sqlite") {
+    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(db + suffix);
+    if (Status s = Seed(db, count); !s) return s.error();
+  } else if (Status s = SeedPostgres(db, count); !s) {
+    return s.error();
+  }
+  const double seed_s = std::chrono::duration<double>(Clock::now() - seed_start).count();
+  std::cerr << "reenact-bench: seeded " << count << " clips on " << engine << " in " << seed_s
+            << " s" << std::endl;
+  return db;
+}
 
-  auto storage = server::OpenSqliteStorage(db_path);
+Status RunOne(const std::string& engine, long long count, const Settings& settings,
+              proto::Report& report) {
+  auto db = SeededDatabase(engine, count, settings);
+  if (!db) return db.error();
+  auto storage = server::OpenStorage(*db);
   if (!storage) return storage.error();
   // A kept database already has the users of earlier runs.
   auto token = server::AddUserWithToken(*storage->metadata, "uploader-" + std::to_string(getpid()));
@@ -240,6 +254,7 @@ Status RunOne(long long count, const Settings& settings, proto::Report& report) 
   const double us = StoreMicrosPerQuery(*storage->metadata, 1000);
   report.rows.push_back(proto::ReportRow()
                             .Add("test", std::string("nearby_store"))
+                            .Add("engine", engine)
                             .Add("n", count)
                             .Add("clients", 1LL)
                             .Add("us_per_query", us));
@@ -251,6 +266,7 @@ Status RunOne(long long count, const Settings& settings, proto::Report& report) 
     const LoadResult nearby = NearbyLoad(port, settings);
     report.rows.push_back(proto::ReportRow()
                               .Add("test", std::string("nearby_http"))
+                              .Add("engine", engine)
                               .Add("n", count)
                               .Add("clients", static_cast<long long>(settings.clients))
                               .Add("qps", nearby.qps)
@@ -258,26 +274,48 @@ Status RunOne(long long count, const Settings& settings, proto::Report& report) 
                               .Add("p99_ms", nearby.p99_ms)
                               .Add("mean_hits", nearby.mean_hits)
                               .Add("errors", nearby.errors));
-    return UploadRow("upload_http", port, url, *token, count, settings, report);
+    return UploadRow("upload_http", engine, port, url, *token, count, settings, report);
   });
   if (!served) return served;
   storage->metadata.reset();
   storage->blobs.reset();
+  if (engine == "postgresql") return {};  // PostgreSQL commits as its server is configured
   // The same uploads with commits that are not synced to disk (synchronous=NORMAL): what the
   // durability of a 204 costs.
   server::StorageOptions unsynced;
   unsynced.fsync_each_commit = false;
-  storage = server::OpenSqliteStorage(db_path, unsynced);
+  storage = server::OpenSqliteStorage(*db, unsynced);
   if (!storage) return storage.error();
   served = WithServer(*storage, options, [&](uint16_t port, const std::string& url) {
-    return UploadRow("upload_http_unsynced", port, url, *token, count, settings, report);
+    return UploadRow("upload_http_unsynced", engine, port, url, *token, count, settings, report);
   });
   if (!served) return served;
   storage->metadata.reset();
   storage->blobs.reset();
   if (!settings.keep_db) {
-    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(db_path + suffix);
+    for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(*db + suffix);
   }
+  return {};
+}
+
+// Two server processes on settings.postgres_url and settings.kills random SIGKILLs.
+Status KillRow(const Settings& settings, proto::Report& report) {
+  KillBenchOptions options;
+  options.server_binary = settings.server_binary;
+  options.db = settings.postgres_url;
+  options.kills = settings.kills;
+  auto run = RunKillBench(options);
+  if (!run) return run.error();
+  report.rows.push_back(proto::ReportRow()
+                            .Add("test", std::string("kills"))
+                            .Add("engine", std::string("postgresql"))
+                            .Add("kills", static_cast<long long>(run->kills))
+                            .Add("mid_upload", static_cast<long long>(run->mid_upload))
+                            .Add("published", static_cast<long long>(run->published))
+                            .Add("lost", static_cast<long long>(run->lost))
+                            .Add("half_visible", static_cast<long long>(run->half_visible))
+                            .Add("observed", run->observed)
+                            .Add("seconds", run->seconds));
   return {};
 }
 
@@ -310,14 +348,25 @@ int RunServerBench(const CommandLine& cl) {
     settings.clip_counts = {100'000, 1'000'000};
   }
   const bool attacks = cl.Has("attacks");
+  const auto kills = cl.GetInt("kills", 50);
+  if (!kills.ok()) return fail(kills.error());
+  if (*kills < 0 || *kills > 10'000) return fail(MakeError("usage", "--kills must be in [0, 10000]"));
+  settings.kills = static_cast<int>(*kills);
+  settings.server_binary = cl.GetOr("server", DefaultServerBinary());
   std::filesystem::path temp_dir;
-  if (auto dir = cl.Get("db")) {
-    if (!std::filesystem::is_directory(*dir)) {
-      return fail(MakeError("usage", "--db wants an existing directory for the bench databases"));
+  const std::optional<std::string> db = cl.Get("db");
+  if (db && server::IsPostgresUrl(*db)) {
+    if (attacks) return fail(MakeError("usage", "--attacks runs on SQLite: --db wants a directory"));
+    settings.postgres_url = *db;
+  } else if (db) {
+    if (!std::filesystem::is_directory(*db)) {
+      return fail(MakeError("usage", "--db wants an existing directory for the bench databases "
+                                     "or a postgresql:// URL"));
     }
-    settings.db_dir = *dir;
+    settings.db_dir = *db;
     settings.keep_db = !attacks;  // the attack database is removed after the run
-  } else {
+  }
+  if (settings.db_dir.empty()) {
     std::string pattern =
         (std::filesystem::temp_directory_path() / "reenact-bench-XXXXXX").string();
     if (mkdtemp(pattern.data()) == nullptr) {
@@ -337,9 +386,17 @@ int RunServerBench(const CommandLine& cl) {
     options.only = cl.GetOr("only", "");
     status = RunAttackBench(options, report);
   } else {
+    std::vector<std::string> engines = {"sqlite"};
+    if (!settings.postgres_url.empty()) engines.push_back("postgresql");
     for (long long count : settings.clip_counts) {
-      status = RunOne(count, settings, report);
+      for (const std::string& engine : engines) {
+        status = RunOne(engine, count, settings, report);
+        if (!status) break;
+      }
       if (!status) break;
+    }
+    if (status && !settings.postgres_url.empty() && settings.kills > 0) {
+      status = KillRow(settings, report);
     }
   }
   if (!temp_dir.empty()) {

@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 
 #include "common/skeleton/skeleton.h"
 #include "proto/clip/content_hash.h"
 #include "server/storage/open_storage.h"
+#include "server/storage/postgres.h"
 #include "server/storage/sqlite.h"
 
 namespace reenact::bench {
@@ -49,6 +51,54 @@ Status Seed(const std::string& db_path, long long count) {
   return tx->Commit();
 }
 
+Status SeedPostgres(const std::string& url, long long count) {
+  auto storage = server::OpenPostgresStorage(url);  // applies the migrations
+  if (!storage) return storage.error();
+  auto db = server::pg::Connection::Open(url);
+  if (!db) return db.error();
+  auto tx = server::pg::Transaction::Begin(*db);
+  if (!tx) return tx.error();
+  if (Status s = db->Exec(
+          "INSERT INTO users(name, created_at) VALUES ('seed', 0) ON CONFLICT (name) DO NOTHING; "
+          "DELETE FROM clips WHERE owner_id = (SELECT id FROM users WHERE name = 'seed'); "
+          "SELECT setseed(0.42)");
+      !s) {
+    return s;
+  }
+  auto inserted = db->Query(
+      "INSERT INTO clips(public_id, owner_id, state, title, author, lat_deg, lon_deg, alt_m, "
+      "duration_s, frame_count, manifest, manifest_sha256, created_at, published_at) "
+      "SELECT 'seed' || lpad(i::text, 20, '0'), (SELECT id FROM users WHERE name = 'seed'), "
+      "'published', 'seeded', 'bench', $2::float8 + ($3::float8 - $2::float8) * random(), "
+      "$4::float8 + ($5::float8 - $4::float8) * random(), 0, "
+      "4, 120, '\\x7b7d', '', 0, 0 FROM generate_series(0, $1::bigint - 1) AS i",
+      {static_cast<int64_t>(count), kMinLat, kMaxLat, kMinLon, kMaxLon});
+  if (!inserted) return inserted.error();
+  if (Status s = tx->Commit(); !s) return s;
+  return db->Exec("ANALYZE clips");
+}
+
+long long SeededClips(const std::string& db) {
+  const std::string count_sql =
+      "SELECT COUNT(*) FROM clips JOIN users ON users.id = clips.owner_id "
+      "WHERE users.name = 'seed' AND clips.state = 'published'";
+  if (server::IsPostgresUrl(db)) {
+    auto connection = server::pg::Connection::Open(db);
+    if (!connection) return -1;
+    auto rows = connection->Query(count_sql);
+    if (!rows || rows->rows() != 1) return -1;
+    return rows->Int(0, 0);
+  }
+  if (!std::filesystem::exists(db)) return -1;
+  auto connection = server::sqlite::Database::Open(db);
+  if (!connection) return -1;
+  auto count = connection->Prepare(count_sql);
+  if (!count) return -1;
+  auto row = count->Step();
+  if (!row || !*row) return -1;
+  return count->ColumnInt(0);
+}
+
 double Percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0;
   const size_t k = std::min(v.size() - 1, static_cast<size_t>(p * static_cast<double>(v.size())));
@@ -66,12 +116,12 @@ std::string NearbyTarget(std::mt19937_64& rng) {
 }
 
 std::string BenchManifest(const std::string& title, const std::vector<proto::PartInfo>& frames,
-                          const proto::PartInfo& map) {
+                          const proto::PartInfo& map, double lat_deg, double lon_deg) {
   proto::ClipManifest m;
   m.title = title;
   m.author = "bench";
   m.capture_time = "2024-05-01T12:00:00Z";
-  m.location = {40, 5, 0, 3, std::nullopt};
+  m.location = {lat_deg, lon_deg, 0, 3, std::nullopt};
   m.color_camera = {640, 480, 525.0, 525.0, 319.5, 239.5, {}};
   m.depth_camera = {640, 480, 525.0, 525.0, 319.5, 239.5, {}};
   for (int i = 0; i < kBodyPartCount; ++i) m.radius_ratio[i] = 0.2;

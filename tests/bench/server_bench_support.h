@@ -31,15 +31,25 @@ inline constexpr int kQueryLimit = 20;
 // one user named "seed", in one transaction. Their ids are "seed" + 20 digits.
 Status Seed(const std::string& db_path, long long count);
 
+// The same on the PostgreSQL database at `url` (applying the migrations): replaces the clips
+// of the "seed" user by `count` new ones in one statement, at places drawn by PostgreSQL's own
+// seeded random() (the same distribution as Seed, not the same places). Other users' clips stay.
+Status SeedPostgres(const std::string& url, long long count);
+
+// The number of published clips of the "seed" user in the database `db` (a SQLite file or a
+// PostgreSQL URL), or -1 when there is no usable one (absent, another schema, unreadable).
+long long SeededClips(const std::string& db);
+
 // The sample at fraction p (0..1) of the sorted samples; 0 for none.
 double Percentile(std::vector<double> v, double p);
 
 // GET /v1/clips?near=... at a random place inside the box.
 std::string NearbyTarget(std::mt19937_64& rng);
 
-// A valid manifest (ParseManifest accepts it) at (40, 5) whose parts are `frames` and `map`.
+// A valid manifest (ParseManifest accepts it) at (lat_deg, lon_deg) whose parts are `frames`
+// and `map`.
 std::string BenchManifest(const std::string& title, const std::vector<proto::PartInfo>& frames,
-                          const proto::PartInfo& map);
+                          const proto::PartInfo& map, double lat_deg = 40, double lon_deg = 5);
 
 // Runs `body(port, url)` against an HttpServer with `options` (its port replaced by a free
 // one) listening on loopback over `storage`; stops the server after and returns body's status.
