@@ -21,8 +21,9 @@ namespace reenact::server {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: reenact-server serve --db FILE|URL [--listen HOST:PORT] [--threads N]\n"
-    "                            [--max-connections N] [--rate-limit PER_S] [--rate-burst N]\n"
+    "usage: reenact-server serve --db FILE|URL [--blobs DIR] [--listen HOST:PORT]\n"
+    "                            [--threads N] [--max-connections N]\n"
+    "                            [--rate-limit PER_S] [--rate-burst N]\n"
     "                            [--header-timeout-s S] [--handler-threads N]\n"
     "                            [--max-connections-per-address N] [--max-body-mb N]\n"
     "                            [--min-transfer-rate BYTES_PER_S] [--min-rate-grace-s S]\n"
@@ -30,8 +31,11 @@ constexpr const char* kUsage =
     "       reenact-server token add NAME --db FILE|URL\n"
     "       reenact-server token revoke NAME --db FILE|URL\n"
     "       reenact-server migrate-db --from FILE|URL --to URL|FILE\n"
+    "                                 [--from-blobs DIR] [--to-blobs DIR]\n"
     "--db: a SQLite database file (created if absent), or a PostgreSQL URL\n"
-    "      postgresql://USER:PASSWORD@HOST:PORT/DATABASE (PostGIS installed there)\n";
+    "      postgresql://USER:PASSWORD@HOST:PORT/DATABASE (PostGIS installed there)\n"
+    "--blobs: keep frames and maps as files in this existing directory instead of in the\n"
+    "      database (every server of one database must see the same directory)\n";
 
 struct Args {
   std::vector<std::string> positional;
@@ -134,7 +138,11 @@ int Serve(const Args& args, std::ostream& out, std::ostream& err) {
     err << "reenact-server: " << limit.error().message << std::endl;
     return 2;
   }
-  auto storage = OpenStorage(db->second);
+  StorageOptions storage_options;
+  if (auto blobs = args.flags.find("--blobs"); blobs != args.flags.end()) {
+    storage_options.blob_dir = blobs->second;
+  }
+  auto storage = OpenStorage(db->second, storage_options);
   if (!storage) {
     err << "reenact-server: " << storage.error().message << std::endl;
     return 1;
@@ -205,7 +213,14 @@ int Token(const std::string& action, const Args& args, std::ostream& out, std::o
   return 0;
 }
 
-// migrate-db --from FILE|URL --to URL|FILE
+// The blob directory of `flag`, if given, as StorageOptions.
+StorageOptions BlobOptions(const Args& args, const std::string& flag) {
+  StorageOptions options;
+  if (auto dir = args.flags.find(flag); dir != args.flags.end()) options.blob_dir = dir->second;
+  return options;
+}
+
+// migrate-db --from FILE|URL --to URL|FILE [--from-blobs DIR] [--to-blobs DIR]
 int MigrateDb(const Args& args, std::ostream& out, std::ostream& err) {
   if (!args.positional.empty()) return Usage(err, "unexpected argument " + args.positional[0]);
   auto from = args.flags.find("--from");
@@ -219,12 +234,12 @@ int MigrateDb(const Args& args, std::ostream& out, std::ostream& err) {
         << "'; --from must name an existing reenact-server database" << std::endl;
     return 2;
   }
-  auto source = OpenStorage(from->second);
+  auto source = OpenStorage(from->second, BlobOptions(args, "--from-blobs"));
   if (!source) {
     err << "reenact-server: source: " << source.error().message << std::endl;
     return 1;
   }
-  auto target = OpenStorage(to->second);
+  auto target = OpenStorage(to->second, BlobOptions(args, "--to-blobs"));
   if (!target) {
     err << "reenact-server: target: " << target.error().message << std::endl;
     return 1;
@@ -257,10 +272,10 @@ int RunServerCli(int argc, const char* const* argv, std::ostream& out, std::ostr
   std::string problem;
   if (words[0] == "serve") {
     if (!ParseArgs({words.begin() + 1, words.end()},
-                   {"--db", "--listen", "--threads", "--handler-threads", "--max-connections",
-                    "--max-connections-per-address", "--max-body-mb", "--min-transfer-rate",
-                    "--min-rate-grace-s",
-                    "--rate-limit", "--rate-burst", "--header-timeout-s"},
+                   {"--db", "--blobs", "--listen", "--threads", "--handler-threads",
+                    "--max-connections", "--max-connections-per-address", "--max-body-mb",
+                    "--min-transfer-rate", "--min-rate-grace-s", "--rate-limit", "--rate-burst",
+                    "--header-timeout-s"},
                    args, problem)) {
       return Usage(err, problem);
     }
@@ -279,7 +294,8 @@ int RunServerCli(int argc, const char* const* argv, std::ostream& out, std::ostr
     return Token(words[1], args, out, err);
   }
   if (words[0] == "migrate-db") {
-    if (!ParseArgs({words.begin() + 1, words.end()}, {"--from", "--to"}, args, problem)) {
+    if (!ParseArgs({words.begin() + 1, words.end()},
+                   {"--from", "--to", "--from-blobs", "--to-blobs"}, args, problem)) {
       return Usage(err, problem);
     }
     return MigrateDb(args, out, err);

@@ -1,7 +1,8 @@
 #pragma once
 // BlobStore: opaque payloads (frames, maps) by key. Keys are "<clip id>/frames/<n>" and
-// "<clip id>/map" (BlobKey below). SqliteBlobStore keeps them in the server's database by
-// default; an S3-style object store can implement the same interface. Thread-safe.
+// "<clip id>/map" (BlobKey below). SqliteBlobStore and PostgresBlobStore keep them in the
+// server's database by default, FileBlobStore as files in a directory; an S3-style object
+// store can implement the same interface. Thread-safe.
 
 #include <cstddef>
 #include <cstdint>

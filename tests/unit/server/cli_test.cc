@@ -1,11 +1,14 @@
 // reenact-server's command line on both storage engines: --db FILE opens the SQLite file as
 // always, --db postgresql://... the PostgreSQL database (the tests' throwaway cluster, skipped
-// with a message where none is installed), and a wrong URL or password is one line at start.
+// with a message where none is installed), and a wrong URL or password is one line at start;
+// --blobs and migrate-db's --from-blobs/--to-blobs keep the blobs as files in a directory.
 #include "server/app/cli.h"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -204,6 +207,49 @@ TEST(ServerCli, MigrateDbFromAMissingFileIsOneLineAndCreatesNothing) {
   EXPECT_NE(run.err.find("no database file at '" + missing + "'"), std::string::npos) << run.err;
   EXPECT_FALSE(std::filesystem::exists(missing));
   EXPECT_FALSE(std::filesystem::exists(to));
+}
+
+TEST(ServerCli, AMissingOrNonDirectoryBlobsPathIsOneLineAndCreatesNoDatabase) {
+  TempDir dir;
+  const std::string db = (dir.path() / "reenact.db").string();
+  const std::string missing = (dir.path() / "missing").string();
+  const std::string file = (dir.path() / "file").string();
+  { std::ofstream(file) << "not a directory"; }
+  for (const std::string& blobs : {missing, file}) {
+    const CliRun run =
+        RunCli({"serve", "--db", db, "--blobs", blobs, "--listen", "127.0.0.1:0"});
+    ExpectOneLineFailure(run);
+    EXPECT_NE(run.err.find("blob directory '" + blobs + "'"), std::string::npos) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(db));
+  }
+}
+
+TEST(ServerCli, MigrateDbMovesTheBlobsIntoADirectory) {
+  TempDir dir;
+  const std::string from = (dir.path() / "from.db").string();
+  const std::string to = (dir.path() / "to.db").string();
+  const std::filesystem::path blobs = dir.path() / "blobs";
+  std::filesystem::create_directory(blobs);
+  const int64_t bytes = MakeSourceFile(from);
+  const CliRun copied =
+      RunCli({"migrate-db", "--from", from, "--to", to, "--to-blobs", blobs.string()});
+  ASSERT_EQ(copied.code, 0) << copied.err;
+  EXPECT_NE(copied.out.find(", 2 blobs, " + std::to_string(bytes) + " bytes in "),
+            std::string::npos)
+      << copied.out;
+  const testing::TestClip clip = testing::MakeTestClip(47.37, 8.54, 1, "zurich");
+  std::ifstream frame(blobs / "zurich" / "frames" / "0.blob", std::ios::binary);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(frame), {}), clip.frames[0]);
+  EXPECT_TRUE(std::filesystem::is_regular_file(blobs / "zurich" / "map.blob"));
+
+  // And back into the database, reading the files.
+  const std::string back = (dir.path() / "back.db").string();
+  const CliRun returned =
+      RunCli({"migrate-db", "--from", to, "--from-blobs", blobs.string(), "--to", back});
+  ASSERT_EQ(returned.code, 0) << returned.err;
+  auto storage = OpenSqliteStorage(back);
+  ASSERT_TRUE(storage.ok()) << storage.error().message;
+  EXPECT_EQ(**storage->blobs->Get(BlobKey("zurich", 0)), clip.frames[0]);
 }
 
 TEST(ServerCli, MigrateDbNeedsBothEnds) {

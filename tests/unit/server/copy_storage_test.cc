@@ -1,6 +1,7 @@
-// CopyStorage from a real SQLite file into a fresh store on either engine (PostgreSQL: the
-// tests' throwaway cluster, skipped with a message where none is installed): every record and
-// payload read back through the target equals what was built into the source.
+// CopyStorage from a real SQLite file into a fresh store on each engine (SQLite with blobs in
+// the database or as files; PostgreSQL: the tests' throwaway cluster, skipped with a message
+// where none is installed): every record and payload read back through the target equals what
+// was built into the source.
 #include "server/storage/copy_storage.h"
 
 #include <gtest/gtest.h>
@@ -128,7 +129,8 @@ class CopyStorageTest : public ::testing::TestWithParam<Engine> {
 };
 
 INSTANTIATE_TEST_SUITE_P(Engines, CopyStorageTest,
-                         ::testing::Values(Engine::kSqlite, Engine::kPostgres),
+                         ::testing::Values(Engine::kSqlite, Engine::kPostgres,
+                                           Engine::kSqliteFiles),
                          testing::EngineName);
 
 TEST_P(CopyStorageTest, EveryRecordAndPayloadReadsBackFromTheTargetAsBuilt) {

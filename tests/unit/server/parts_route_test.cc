@@ -1,6 +1,7 @@
 // GET /v1/clips/{id}/parts, GET /v1/me/clips?manifest_sha256=, and how PUT and publish treat
-// a part whose stored copy was damaged: the routes a resumable upload relies on. On both
-// storage engines (SQLite; PostgreSQL where the tests' cluster can be started).
+// a part whose stored copy was damaged: the routes a resumable upload relies on. On each
+// storage engine (SQLite with blobs in the database or as files; PostgreSQL where the tests'
+// cluster can be started).
 #include <gtest/gtest.h>
 
 #include "proto/api/api_types.h"
@@ -15,7 +16,8 @@ using testing::TestClip;
 
 class PartsRouteTest : public testing::EngineServiceFixture {};
 INSTANTIATE_TEST_SUITE_P(Engines, PartsRouteTest,
-                         ::testing::Values(testing::Engine::kSqlite, testing::Engine::kPostgres),
+                         ::testing::Values(testing::Engine::kSqlite, testing::Engine::kPostgres,
+                                           testing::Engine::kSqliteFiles),
                          testing::EngineName);
 
 proto::ClipParts Parts(const Response& r) {

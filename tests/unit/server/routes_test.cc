@@ -1,5 +1,6 @@
-// Route handlers without sockets, on real storage of both engines: SQLite in a temp dir, and
-// PostgreSQL in the tests' throwaway cluster (skipped with a message where none is installed).
+// Route handlers without sockets, on real storage of each engine: SQLite in a temp dir (blobs
+// in the database or as files), and PostgreSQL in the tests' throwaway cluster (skipped with a
+// message where none is installed).
 #include "server/http/routes.h"
 
 #include <gtest/gtest.h>
@@ -15,7 +16,8 @@ using testing::TestClip;
 
 class RoutesTest : public testing::EngineServiceFixture {};
 INSTANTIATE_TEST_SUITE_P(Engines, RoutesTest,
-                         ::testing::Values(testing::Engine::kSqlite, testing::Engine::kPostgres),
+                         ::testing::Values(testing::Engine::kSqlite, testing::Engine::kPostgres,
+                                           testing::Engine::kSqliteFiles),
                          testing::EngineName);
 
 std::optional<std::string> HeaderOf(const Response& r, const std::string& name) {

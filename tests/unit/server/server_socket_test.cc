@@ -1,5 +1,6 @@
-// The real server on 127.0.0.1 with a free port, driven end to end by proto's ApiClient, on both
-// storage engines (PostgreSQL where the tests' cluster can be started).
+// The real server on 127.0.0.1 with a free port, driven end to end by proto's ApiClient, on each
+// storage engine (SQLite with blobs in the database or as files; PostgreSQL where the tests'
+// cluster can be started).
 #include "server/http/http_server.h"
 
 #include <thread>
@@ -45,7 +46,8 @@ class ServerSocketTest : public testing::EngineServiceFixture {
 };
 
 INSTANTIATE_TEST_SUITE_P(Engines, ServerSocketTest,
-                         ::testing::Values(testing::Engine::kSqlite, testing::Engine::kPostgres),
+                         ::testing::Values(testing::Engine::kSqlite, testing::Engine::kPostgres,
+                                           testing::Engine::kSqliteFiles),
                          testing::EngineName);
 
 TEST_P(ServerSocketTest, UploadPublishBrowseDownloadDelete) {

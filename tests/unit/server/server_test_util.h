@@ -1,7 +1,8 @@
 #pragma once
 // Shared helpers of the server tests: a temporary directory, valid clips built through
-// proto's manifest writer, storage on either engine, and a service over real storage (SQLite,
-// or PostgreSQL in the tests' throwaway cluster) with two users.
+// proto's manifest writer, storage on each engine, and a service over real storage (SQLite,
+// SQLite with the blobs as files, or PostgreSQL in the tests' throwaway cluster) with two
+// users.
 
 #include <gtest/gtest.h>
 
@@ -67,18 +68,35 @@ inline TestClip MakeTestClip(double lat, double lon, int frames = 3,
   return clip;
 }
 
-// The storage engines tests run on, as a test parameter.
-enum class Engine { kSqlite, kPostgres };
+// The storage engines tests run on, as a test parameter: kSqliteFiles is SQLite metadata with
+// the blobs as files (FileBlobStore).
+enum class Engine { kSqlite, kPostgres, kSqliteFiles };
 
 inline std::string EngineName(const ::testing::TestParamInfo<Engine>& info) {
-  return info.param == Engine::kSqlite ? "Sqlite" : "Postgres";
+  switch (info.param) {
+    case Engine::kSqlite: return "Sqlite";
+    case Engine::kPostgres: return "Postgres";
+    case Engine::kSqliteFiles: return "SqliteFiles";
+  }
+  return "Unknown";
 }
 
-// New empty storage on `engine`: a SQLite file in `dir`, or a fresh database of the PostgreSQL
-// test cluster `which` (postgres_test_cluster.h; code "unavailable" where none can be started).
+// The blob directory of kSqliteFiles storage in `dir`.
+inline std::filesystem::path TestBlobDir(const TempDir& dir) { return dir.path() / "blobs"; }
+
+// New empty storage on `engine`: a SQLite file in `dir` (with the blobs in TestBlobDir(dir)
+// for kSqliteFiles), or a fresh database of the PostgreSQL test cluster `which`
+// (postgres_test_cluster.h; code "unavailable" where none can be started).
 inline Expected<Storage> OpenTestStorage(Engine engine, const TempDir& dir,
                                          TestCluster which = TestCluster::kShared) {
-  if (engine == Engine::kSqlite) return OpenSqliteStorage((dir.path() / "db.sqlite").string());
+  const std::string db = (dir.path() / "db.sqlite").string();
+  if (engine == Engine::kSqlite) return OpenSqliteStorage(db);
+  if (engine == Engine::kSqliteFiles) {
+    std::filesystem::create_directories(TestBlobDir(dir));
+    StorageOptions options;
+    options.blob_dir = TestBlobDir(dir).string();
+    return OpenSqliteStorage(db, options);
+  }
   auto url = NewPostgresTestDatabase(which);
   if (!url) return url.error();
   return OpenPostgresStorage(*url);
@@ -176,7 +194,9 @@ class ServiceFixture : public ::testing::Test {
 // ServiceFixture on the engine of the test parameter:
 //   class RoutesTest : public EngineServiceFixture {};
 //   INSTANTIATE_TEST_SUITE_P(Engines, RoutesTest,
-//                            ::testing::Values(Engine::kSqlite, Engine::kPostgres), EngineName);
+//                            ::testing::Values(Engine::kSqlite, Engine::kPostgres,
+//                                              Engine::kSqliteFiles),
+//                            EngineName);
 class EngineServiceFixture : public ServiceFixture, public ::testing::WithParamInterface<Engine> {
  protected:
   Engine engine() const override { return GetParam(); }
