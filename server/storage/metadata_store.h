@@ -6,10 +6,12 @@
 // with code "storage", or "unavailable" when the database server cannot be reached (the store
 // works again once it can: retry); they never carry user input back out.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "common/error/expected.h"
@@ -89,6 +91,21 @@ struct NearbyHit {
   ClipRecord clip;
   double distance_m = 0.0;  // haversine great-circle distance from the query point
 };
+
+// The keyset order every store pages nearby search by, so that a cursor means the same on any
+// engine: whether a hit at (distance_m, id) comes strictly after the query's cursor.
+inline bool AfterNearbyCursor(const NearbyQuery& query, double distance_m, const std::string& id) {
+  return !query.after || std::tie(distance_m, id) > std::tie(query.after->distance_m,
+                                                             query.after->id);
+}
+
+// Sorts hits by (distance, id) and keeps the first `limit`.
+inline void SortAndTrimNearby(std::vector<NearbyHit>& hits, int limit) {
+  std::sort(hits.begin(), hits.end(), [](const NearbyHit& a, const NearbyHit& b) {
+    return std::tie(a.distance_m, a.clip.id) < std::tie(b.distance_m, b.clip.id);
+  });
+  if (hits.size() > static_cast<size_t>(limit)) hits.resize(static_cast<size_t>(limit));
+}
 
 struct PublishResult {
   bool published = false;            // true: the clip is now (or already was) visible

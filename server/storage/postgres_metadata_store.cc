@@ -346,16 +346,10 @@ Expected<std::vector<NearbyHit>> PostgresMetadataStore::Nearby(const NearbyQuery
                                         rows->Double(i, 6));
     if (d > query.radius_m) continue;
     ClipRecord clip = ReadClip(*rows, i);
-    if (query.after &&
-        std::tie(d, clip.id) <= std::tie(query.after->distance_m, query.after->id)) {
-      continue;
-    }
+    if (!AfterNearbyCursor(query, d, clip.id)) continue;
     hits.push_back(NearbyHit{std::move(clip), d});
   }
-  std::sort(hits.begin(), hits.end(), [](const NearbyHit& a, const NearbyHit& b) {
-    return std::tie(a.distance_m, a.clip.id) < std::tie(b.distance_m, b.clip.id);
-  });
-  if (hits.size() > static_cast<size_t>(query.limit)) hits.resize(query.limit);
+  SortAndTrimNearby(hits, query.limit);
   return hits;
 }
 

@@ -403,17 +403,11 @@ Expected<std::vector<NearbyHit>> SqliteMetadataStore::Nearby(const NearbyQuery& 
       if (d > query.radius_m) continue;
       ClipRecord clip = ReadClip(*stmt);
       if (boxes.size() > 1 && !seen.insert(clip.id).second) continue;
-      if (query.after &&
-          std::tie(d, clip.id) <= std::tie(query.after->distance_m, query.after->id)) {
-        continue;
-      }
+      if (!AfterNearbyCursor(query, d, clip.id)) continue;
       hits.push_back(NearbyHit{std::move(clip), d});
     }
   }
-  std::sort(hits.begin(), hits.end(), [](const NearbyHit& a, const NearbyHit& b) {
-    return std::tie(a.distance_m, a.clip.id) < std::tie(b.distance_m, b.clip.id);
-  });
-  if (hits.size() > static_cast<size_t>(query.limit)) hits.resize(query.limit);
+  SortAndTrimNearby(hits, query.limit);
   return hits;
 }
 

@@ -12,7 +12,8 @@
 // With --db postgresql://... each N runs on SQLite (a temporary file) and then on that
 // PostgreSQL database, in one table (column engine); the database is the bench's own: its
 // "seed" user's clips are replaced unless it already holds N of them. PostgreSQL uploads are
-// synced as its server is configured, so they have no unsynced row. Then the kill run
+// synced as its server is configured, so they have no unsynced row but one with the parts as
+// files (upload_http_files, --blobs in a temporary directory). Then the kill run
 // (server_kill_bench.h): two `reenact-server` processes (--server PATH, default the build
 // tree's) on that database and --kills K random SIGKILLs (default 50).
 // --attacks runs only the adversarial section instead (server_attack_bench.h): 10^4 clips
@@ -283,7 +284,23 @@ Status RunOne(const std::string& engine, long long count, const Settings& settin
   if (!served) return served;
   storage->metadata.reset();
   storage->blobs.reset();
-  if (engine == "postgresql") return {};  // PostgreSQL commits as its server is configured
+  if (engine == "postgresql") {
+    // PostgreSQL commits as its server is configured; the same uploads with the parts as
+    // files (--blobs) instead, in a directory beside the SQLite databases.
+    server::StorageOptions files;
+    files.blob_dir = settings.db_dir + "/blobs-" + std::to_string(getpid());
+    std::filesystem::create_directories(files.blob_dir);
+    storage = server::OpenStorage(*db, files);
+    if (!storage) return storage.error();
+    served = WithServer(*storage, options, [&](uint16_t port, const std::string& url) {
+      return UploadRow("upload_http_files", engine, port, url, *token, count, settings, report);
+    });
+    storage->metadata.reset();
+    storage->blobs.reset();
+    std::error_code ec;
+    std::filesystem::remove_all(files.blob_dir, ec);
+    return served;
+  }
   // The same uploads with commits that are not synced to disk (synchronous=NORMAL): what the
   // durability of a 204 costs.
   server::StorageOptions unsynced;

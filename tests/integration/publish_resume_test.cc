@@ -22,26 +22,12 @@ namespace reenact {
 namespace {
 
 using testing::kCapture;
+using testing::PartOnDisk;
 using testing::RunProcess;
 using testing::ServerProcess;
 
 constexpr int kFrames = 40;
 constexpr int kParts = kFrames + 1;
-
-std::string ReadFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
-
-// Payload of part `index` (frame n, or proto::kMapPartIndex) as recorded on disk.
-std::string PartOnDisk(const std::string& clip, int index) {
-  if (index == proto::kMapPartIndex) return ReadFile(clip + "/map.rmap");
-  char name[32];
-  std::snprintf(name, sizeof(name), "/frames/%06d.rfrm", index);
-  return ReadFile(clip + name);
-}
 
 // A user and two tokens of theirs: one for the client under test, one for the test's own
 // requests (so that they never spend the client's rate-limit credit).

@@ -15,11 +15,14 @@
 #include <chrono>
 #include <cstdio>
 #include <cmath>
+#include <fstream>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "proto/clip/manifest.h"
 #include "server/storage/sqlite.h"
 #include "tests/integration/process.h"
 
@@ -199,6 +202,22 @@ inline double ReferenceDistanceM(double lat1, double lon1, double lat2, double l
       std::sin(dlat / 2) * std::sin(dlat / 2) +
       std::cos(lat1 * kRad) * std::cos(lat2 * kRad) * std::sin(dlon / 2) * std::sin(dlon / 2);
   return 2 * kR * std::asin(std::min(1.0, std::sqrt(a)));
+}
+
+// The bytes of a file ("" when it cannot be read).
+inline std::string ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+// Payload of part `index` (frame n, or proto::kMapPartIndex) of a clip recorded in `clip`.
+inline std::string PartOnDisk(const std::string& clip, int index) {
+  if (index == proto::kMapPartIndex) return ReadFile(clip + "/map.rmap");
+  char name[32];
+  std::snprintf(name, sizeof(name), "/frames/%06d.rfrm", index);
+  return ReadFile(clip + name);
 }
 
 }  // namespace reenact::testing

@@ -25,7 +25,9 @@ namespace reenact {
 namespace {
 
 using testing::kCapture;
+using testing::PartOnDisk;
 using testing::kServer;
+using testing::ReadFile;
 using testing::RunProcess;
 using testing::ServerProcess;
 
@@ -34,21 +36,6 @@ using testing::ServerProcess;
 constexpr int kFrames[] = {0, 30, 40};  // by clip number
 constexpr int kParts2 = kFrames[2] + 1;
 constexpr double kLat = 34.7325, kLon = 135.7336;
-
-std::string ReadFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream bytes;
-  bytes << in.rdbuf();
-  return bytes.str();
-}
-
-// Payload of part `index` (frame n, or proto::kMapPartIndex) as recorded on disk.
-std::string PartOnDisk(const std::string& clip, int index) {
-  if (index == proto::kMapPartIndex) return ReadFile(clip + "/map.rmap");
-  char name[32];
-  std::snprintf(name, sizeof(name), "/frames/%06d.rfrm", index);
-  return ReadFile(clip + name);
-}
 
 // The one line a `user add` or `token add` prints on stdout: the token.
 std::string AddToken(const std::string& command, const std::string& db) {
