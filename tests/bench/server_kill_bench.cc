@@ -242,7 +242,10 @@ Expected<KillBenchResult> RunKillBench(const KillBenchOptions& options) {
     for (int turn = 0; !done; ++turn) {
       const proto::ApiClient api(url_of(turn % 2), "");
       auto near = VisibleClips(api);
-      if (!near) continue;
+      if (!near) {  // that server is down: the other one next, after a breath
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        continue;
+      }
       for (const auto& c : *near) {
         if (whole.count(c.id)) continue;
         const std::optional<bool> ok = CheckWhole(api, c.id, nullptr);
