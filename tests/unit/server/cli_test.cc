@@ -83,14 +83,19 @@ TEST(ServerCli, WrongPostgresPasswordIsOneLineAtStart) {
   EXPECT_EQ(run.err.find("wrong-secret"), std::string::npos) << run.err;
 }
 
+// `url`: a new database of the PostgreSQL test cluster as a postgresql:// URL; skips where
+// none can be started.
+#define REENACT_POSTGRES_URL_OR_SKIP(url)                                      \
+  auto url##_conninfo = testing::NewPostgresTestDatabase();                    \
+  if (!url##_conninfo && url##_conninfo.error().code == "unavailable") {       \
+    GTEST_SKIP() << url##_conninfo.error().message;                            \
+  }                                                                            \
+  ASSERT_TRUE(url##_conninfo.ok()) << url##_conninfo.error().message;         \
+  auto url = pg::AsUrl(*url##_conninfo);                                       \
+  ASSERT_TRUE(url.ok()) << url.error().message
+
 TEST(ServerCli, UserAndTokenCommandsWorkOnAPostgresUrl) {
-  auto database = testing::NewPostgresTestDatabase();
-  if (!database && database.error().code == "unavailable") {
-    GTEST_SKIP() << database.error().message;
-  }
-  ASSERT_TRUE(database.ok()) << database.error().message;
-  auto url = pg::AsUrl(*database);
-  ASSERT_TRUE(url.ok()) << url.error().message;
+  REENACT_POSTGRES_URL_OR_SKIP(url);
   ASSERT_EQ(url->rfind("postgresql://", 0), 0u) << *url;
 
   const CliRun added = RunCli({"user", "add", "alice", "--db", *url});
@@ -99,7 +104,7 @@ TEST(ServerCli, UserAndTokenCommandsWorkOnAPostgresUrl) {
   const CliRun second = RunCli({"token", "add", "alice", "--db", *url});
   ASSERT_EQ(second.code, 0) << second.err;
 
-  auto storage = OpenPostgresStorage(*database);
+  auto storage = OpenPostgresStorage(*url);
   ASSERT_TRUE(storage.ok()) << storage.error().message;
   auto owner = storage->metadata->FindUserByTokenHash(HashToken(token));
   ASSERT_TRUE(owner.ok() && owner->has_value());
@@ -152,13 +157,7 @@ int64_t MakeSourceFile(const std::string& path) {
 }
 
 TEST(ServerCli, MigrateDbCopiesAFileIntoPostgresPrintsTheSummaryAndRefusesASecondRun) {
-  auto database = testing::NewPostgresTestDatabase();
-  if (!database && database.error().code == "unavailable") {
-    GTEST_SKIP() << database.error().message;
-  }
-  ASSERT_TRUE(database.ok()) << database.error().message;
-  auto url = pg::AsUrl(*database);
-  ASSERT_TRUE(url.ok()) << url.error().message;
+  REENACT_POSTGRES_URL_OR_SKIP(url);
   TempDir dir;
   const std::string path = (dir.path() / "reenact.db").string();
   const int64_t bytes = MakeSourceFile(path);
@@ -172,7 +171,7 @@ TEST(ServerCli, MigrateDbCopiesAFileIntoPostgresPrintsTheSummaryAndRefusesASecon
   EXPECT_NE(copied.out.find(" s; verified by SHA-256\n"), std::string::npos) << copied.out;
   EXPECT_EQ(copied.out.find('\n'), copied.out.size() - 1);
 
-  auto storage = OpenPostgresStorage(*database);
+  auto storage = OpenPostgresStorage(*url);
   ASSERT_TRUE(storage.ok()) << storage.error().message;
   auto owner = storage->metadata->FindUserByTokenHash(HashToken("rnk_alice"));
   ASSERT_TRUE(owner.ok() && owner->has_value());
