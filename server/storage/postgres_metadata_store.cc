@@ -33,15 +33,15 @@ ClipRecord ReadClip(const pg::Result& rows, int row) {
 
 int64_t NowUnix() { return static_cast<int64_t>(std::time(nullptr)); }
 
-// The internal key of a clip, or nullopt; `lock` takes the clip's row lock until commit.
-Expected<std::optional<int64_t>> ClipKey(pg::Connection& db, const std::string& id,
-                                         bool lock = false) {
+// The internal key of a clip (code "not_found" when there is none); `lock` takes the clip's
+// row lock until commit.
+Expected<int64_t> ClipKey(pg::Connection& db, const std::string& id, bool lock = false) {
   auto rows = db.Query(std::string("SELECT clip_key FROM clips WHERE public_id = $1") +
                            (lock ? " FOR UPDATE" : ""),
                        {id});
   if (!rows) return rows.error();
-  if (rows->rows() == 0) return std::optional<int64_t>();
-  return std::optional<int64_t>(rows->Int(0, 0));
+  if (rows->rows() == 0) return MakeError("not_found", "no clip " + id);
+  return rows->Int(0, 0);
 }
 
 Expected<std::optional<UserRecord>> UserByName(pg::Connection& db, const std::string& name) {
@@ -236,12 +236,11 @@ Expected<std::vector<PartRecord>> PostgresMetadataStore::ListParts(const std::st
   pg::ConnectionPool::Lease db = pool_->Acquire();
   auto key = ClipKey(*db, id);
   if (!key) return key.error();
-  if (!*key) return MakeError("not_found", "no clip " + id);
   // Frames 0..n-1 first, then the map (index -1): false sorts before true.
   auto rows = db->Query(
       "SELECT part_index, bytes, sha256, present FROM clip_parts WHERE clip_key = $1 "
       "ORDER BY part_index < 0, part_index",
-      {**key});
+      {*key});
   if (!rows) return rows.error();
   std::vector<PartRecord> parts;
   for (int i = 0; i < rows->rows(); ++i) {
@@ -271,11 +270,10 @@ Expected<PublishResult> PostgresMetadataStore::Publish(const std::string& id) {
   if (!tx) return tx.error();
   auto key = ClipKey(*db, id, /*lock=*/true);
   if (!key) return key.error();
-  if (!*key) return MakeError("not_found", "no clip " + id);
   auto missing = db->Query(
       "SELECT part_index FROM clip_parts WHERE clip_key = $1 AND NOT present "
       "ORDER BY part_index",
-      {**key});
+      {*key});
   if (!missing) return missing.error();
   PublishResult result;
   for (int i = 0; i < missing->rows(); ++i) {
@@ -285,7 +283,7 @@ Expected<PublishResult> PostgresMetadataStore::Publish(const std::string& id) {
   if (auto update = db->Query(
           "UPDATE clips SET state = 'published', published_at = COALESCE(published_at, $2) "
           "WHERE clip_key = $1",
-          {**key, NowUnix()});
+          {*key, NowUnix()});
       !update) {
     return update.error();
   }

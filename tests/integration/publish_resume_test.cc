@@ -21,6 +21,7 @@
 namespace reenact {
 namespace {
 
+using testing::ExpectClipWholeOn;
 using testing::kCapture;
 using testing::PartOnDisk;
 using testing::RunProcess;
@@ -69,19 +70,6 @@ void ExpectOneLine(const std::string& err) {
   std::string text = err;
   while (!text.empty() && text.back() == '\n') text.pop_back();
   EXPECT_EQ(text.find('\n'), std::string::npos) << "more than one line:\n" << err;
-}
-
-// Every part of the published clip, downloaded anonymously, has the SHA-256 of the file.
-void ExpectWholeOnServer(const std::string& url, const std::string& id, const std::string& clip) {
-  const proto::ApiClient anonymous(url, "");
-  for (int n = 0; n < kFrames; ++n) {
-    auto frame = anonymous.GetFrame(id, n);
-    ASSERT_TRUE(frame.ok()) << "frame " << n << ": " << frame.error().message;
-    EXPECT_EQ(proto::Sha256Hex(*frame), proto::Sha256Hex(PartOnDisk(clip, n))) << "frame " << n;
-  }
-  auto map = anonymous.GetMap(id);
-  ASSERT_TRUE(map.ok()) << map.error().message;
-  EXPECT_EQ(proto::Sha256Hex(*map), proto::Sha256Hex(PartOnDisk(clip, proto::kMapPartIndex)));
 }
 
 size_t VisibleNearby(const std::string& url) {
@@ -175,7 +163,7 @@ TEST_F(PublishResume, ServerKilledMidUploadThenRerunSendsOnlyTheMissingParts) {
   EXPECT_EQ(SummaryValue(second.out, "parts_sent"), kParts - held);
   EXPECT_EQ(SummaryValue(second.out, "bytes_sent"), static_cast<long long>(missing_bytes));
   EXPECT_EQ(VisibleNearby(*url), 1u);
-  ExpectWholeOnServer(*url, draft, clip());
+  ExpectClipWholeOn(*url, draft, clip(), kFrames);
   server.Kill(SIGTERM);
   EXPECT_EQ(testing::IntegrityCheck(db_), "ok");
 }
@@ -259,7 +247,7 @@ TEST_F(PublishResume, PartsDamagedInTheServersStorageAreSentAgain) {
   EXPECT_EQ(SummaryValue(second.out, "parts_sent"), kParts - 8);
   EXPECT_NE(second.out.find("copy of frame 3 differs"), std::string::npos) << second.out;
   EXPECT_NE(second.out.find("copy of frame 7 differs"), std::string::npos) << second.out;
-  ExpectWholeOnServer(*url, draft, clip());
+  ExpectClipWholeOn(*url, draft, clip(), kFrames);
 
   // Running it once more finds the clip published and sends nothing.
   const auto third = Publish(clip(), *url, account.token);

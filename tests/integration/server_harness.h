@@ -224,11 +224,28 @@ inline std::string PartOnDisk(const std::string& clip, int index) {
 
 #include <random>
 
+#include "proto/api/api_client.h"
 #include "proto/clip/content_hash.h"
 #include "proto/clip/manifest.h"
 #include "tests/unit/server/server_test_util.h"
 
 namespace reenact::testing {
+
+// Every part of clip `id` (`frames` frames and the map), downloaded anonymously from `url`,
+// has the SHA-256 of the part recorded in `clip` (PartOnDisk).
+inline void ExpectClipWholeOn(const std::string& url, const std::string& id,
+                              const std::string& clip, int frames) {
+  SCOPED_TRACE("downloaded from " + url);
+  const proto::ApiClient anonymous(url, "");
+  for (int n = 0; n < frames; ++n) {
+    auto frame = anonymous.GetFrame(id, n);
+    ASSERT_TRUE(frame.ok()) << "frame " << n << ": " << frame.error().message;
+    EXPECT_EQ(proto::Sha256Hex(*frame), proto::Sha256Hex(PartOnDisk(clip, n))) << "frame " << n;
+  }
+  auto map = anonymous.GetMap(id);
+  ASSERT_TRUE(map.ok()) << map.error().message;
+  EXPECT_EQ(proto::Sha256Hex(*map), proto::Sha256Hex(PartOnDisk(clip, proto::kMapPartIndex)));
+}
 
 struct SyntheticClip {
   std::string manifest_json;

@@ -24,6 +24,7 @@
 namespace reenact {
 namespace {
 
+using testing::ExpectClipWholeOn;
 using testing::kCapture;
 using testing::PartOnDisk;
 using testing::kServer;
@@ -65,21 +66,6 @@ long long SummaryValue(const std::string& out, const std::string& key) {
   std::smatch m;
   if (!std::regex_search(out, m, std::regex("(^|\\s)" + key + "=(\\d+)"))) return -1;
   return std::stoll(m[2].str());
-}
-
-// Every part of clip `id`, downloaded anonymously from `url`, has the SHA-256 of the file.
-void ExpectWholeOn(const std::string& url, const std::string& id, const std::string& clip,
-                   int frames) {
-  SCOPED_TRACE("downloaded from " + url);
-  const proto::ApiClient anonymous(url, "");
-  for (int n = 0; n < frames; ++n) {
-    auto frame = anonymous.GetFrame(id, n);
-    ASSERT_TRUE(frame.ok()) << "frame " << n << ": " << frame.error().message;
-    EXPECT_EQ(proto::Sha256Hex(*frame), proto::Sha256Hex(PartOnDisk(clip, n))) << "frame " << n;
-  }
-  auto map = anonymous.GetMap(id);
-  ASSERT_TRUE(map.ok()) << map.error().message;
-  EXPECT_EQ(proto::Sha256Hex(*map), proto::Sha256Hex(PartOnDisk(clip, proto::kMapPartIndex)));
 }
 
 // The ids of the clips near the recording place, as anonymous browsing sees them.
@@ -274,7 +260,7 @@ TEST_F(MultiServer, PublishedThroughOneServerIsDownloadedWholeThroughTheOther) {
   auto manifest_b = proto::ApiClient(*url_b, "").GetManifest(id);
   ASSERT_TRUE(manifest_a.ok() && manifest_b.ok());
   EXPECT_EQ(*manifest_b, *manifest_a);
-  ExpectWholeOn(*url_b, id, clip(1), kFrames[1]);
+  ExpectClipWholeOn(*url_b, id, clip(1), kFrames[1]);
 }
 
 TEST_F(MultiServer, UploadKilledOnOneServerResumesOnTheOther) {
@@ -323,12 +309,12 @@ TEST_F(MultiServer, UploadKilledOnOneServerResumesOnTheOther) {
   watch.Stop();
   EXPECT_GT(watch.checks(), 0);
   EXPECT_FALSE(watch.saw_half_published());
-  ExpectWholeOn(*url_b, draft, clip(2), kFrames[2]);
+  ExpectClipWholeOn(*url_b, draft, clip(2), kFrames[2]);
 
   // A restarted A serves the same clip.
   const auto again = a.Start(db_);
   ASSERT_TRUE(again);
-  ExpectWholeOn(*again, draft, clip(2), kFrames[2]);
+  ExpectClipWholeOn(*again, draft, clip(2), kFrames[2]);
 }
 
 TEST_F(MultiServer, BehindNginxAKilledServerIsRoutedAroundAndTheUploadCompletes) {
@@ -350,9 +336,9 @@ TEST_F(MultiServer, BehindNginxAKilledServerIsRoutedAroundAndTheUploadCompletes)
   const auto r = Publish(clip(1), url, token_);
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const std::string first_id = ClipId(r.out);
-  ExpectWholeOn(url, first_id, clip(1), kFrames[1]);
-  ExpectWholeOn(*url_a, first_id, clip(1), kFrames[1]);
-  ExpectWholeOn(*url_b, first_id, clip(1), kFrames[1]);
+  ExpectClipWholeOn(url, first_id, clip(1), kFrames[1]);
+  ExpectClipWholeOn(*url_a, first_id, clip(1), kFrames[1]);
+  ExpectClipWholeOn(*url_b, first_id, clip(1), kFrames[1]);
 
   // A second one; A is killed part way. Once nginx has marked A down every request goes to B.
   HalfPublishedWatch watch(*url_b, observer_token_);
@@ -385,8 +371,8 @@ TEST_F(MultiServer, BehindNginxAKilledServerIsRoutedAroundAndTheUploadCompletes)
   EXPECT_EQ(ClipId(second.out), draft);
   watch.Stop();
   EXPECT_FALSE(watch.saw_half_published());
-  ExpectWholeOn(url, draft, clip(2), kFrames[2]);
-  ExpectWholeOn(*url_b, draft, clip(2), kFrames[2]);
+  ExpectClipWholeOn(url, draft, clip(2), kFrames[2]);
+  ExpectClipWholeOn(*url_b, draft, clip(2), kFrames[2]);
   const auto visible = VisibleNearby(url);
   EXPECT_EQ(visible.size(), 2u);
 
@@ -396,7 +382,7 @@ TEST_F(MultiServer, BehindNginxAKilledServerIsRoutedAroundAndTheUploadCompletes)
   NginxProcess fresh;
   const std::string url2 = fresh.Start(nginx, tmp2.path(), a.port(), b.port(), &error);
   ASSERT_FALSE(url2.empty()) << error;
-  ExpectWholeOn(url2, draft, clip(2), kFrames[2]);
+  ExpectClipWholeOn(url2, draft, clip(2), kFrames[2]);
   EXPECT_EQ(VisibleNearby(url2).size(), 2u);
 }
 
